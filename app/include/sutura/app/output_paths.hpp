@@ -1,0 +1,22 @@
+#pragma once
+// Where a session may write: only inside the output directory given on the command line.
+// A session file may come from someone else, so absolute paths, `..` components and
+// symbolic links leading out of the directory are rejected before anything is written.
+#include <filesystem>
+#include <string>
+
+namespace sutura::app {
+
+/// Returns out_dir / relative after checking that `relative` is non-empty, not absolute,
+/// has no `..` component and — once its existing parents are resolved through symlinks —
+/// stays inside out_dir. Creates the missing parent directories. Throws std::invalid_argument
+/// with a message saying why the path is refused.
+std::filesystem::path resolve_output_path(const std::filesystem::path& out_dir,
+                                          const std::filesystem::path& relative);
+
+/// Checks `relative` the same way without touching the file system (used while parsing, so a
+/// bad path is reported with its line before the session runs). Returns an empty string when
+/// acceptable, else the reason.
+std::string output_path_problem(const std::filesystem::path& relative);
+
+}  // namespace sutura::app

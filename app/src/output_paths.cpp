@@ -1,0 +1,60 @@
+#include "sutura/app/output_paths.hpp"
+
+#include <stdexcept>
+
+namespace sutura::app {
+
+namespace fs = std::filesystem;
+
+std::string output_path_problem(const fs::path& relative) {
+  if (relative.empty()) return "the path is empty";
+  if (relative.is_absolute() || relative.has_root_name() || relative.has_root_directory())
+    return "absolute paths are not allowed: outputs are written only inside the output directory";
+  for (const auto& part : relative) {
+    if (part == "..") return "'..' is not allowed: outputs are written only inside the output directory";
+  }
+  if (!relative.has_filename() || relative.filename() == ".")
+    return "the path must name a file";
+  return {};
+}
+
+namespace {
+bool inside(const fs::path& root, const fs::path& p) {
+  const fs::path rel = p.lexically_relative(root);
+  return !rel.empty() && *rel.begin() != "..";
+}
+}  // namespace
+
+fs::path resolve_output_path(const fs::path& out_dir, const fs::path& relative) {
+  if (std::string why = output_path_problem(relative); !why.empty())
+    throw std::invalid_argument("'" + relative.string() + "': " + why);
+  fs::create_directories(out_dir);
+  const fs::path root = fs::canonical(out_dir);
+  // Walk down one component at a time, resolving each existing one through symlinks before
+  // creating anything below it: a symlink planted inside the output directory must not lead
+  // a write (or a create_directories) out of it.
+  fs::path current = root;
+  const fs::path normal = relative.lexically_normal();
+  for (auto it = normal.begin(); it != normal.end(); ++it) {
+    const bool last = std::next(it) == normal.end();
+    fs::path next = current / *it;
+    if (fs::exists(fs::symlink_status(next))) {
+      const fs::path resolved = fs::weakly_canonical(next);
+      if (!inside(root, resolved) && resolved != root)
+        throw std::invalid_argument("'" + relative.string() +
+                                    "': leads outside the output directory through a symbolic link");
+      if (!last && !fs::is_directory(resolved))
+        throw std::invalid_argument("'" + relative.string() + "': '" + it->string() +
+                                    "' exists and is not a directory");
+      if (last && fs::is_directory(resolved))
+        throw std::invalid_argument("'" + relative.string() + "': is an existing directory");
+      current = resolved;
+    } else {
+      if (!last) fs::create_directory(next);
+      current = next;
+    }
+  }
+  return current;
+}
+
+}  // namespace sutura::app

@@ -1,0 +1,44 @@
+#include "sutura/app/report.hpp"
+
+#include <cstdio>
+#include <cstring>
+
+namespace sutura::app {
+
+std::string position_hash(const engine::SurfaceMesh& mesh) {
+  // FNV-1a over the IEEE-754 bytes: any change of any bit of any coordinate changes the hash.
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const auto& p : mesh.positions()) {
+    for (int i = 0; i < 3; ++i) {
+      unsigned char bytes[sizeof(double)];
+      const double v = p[i];
+      std::memcpy(bytes, &v, sizeof v);
+      for (unsigned char b : bytes) {
+        h ^= b;
+        h *= 0x100000001b3ULL;
+      }
+    }
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+nlohmann::json object_summary(const SceneObject& object) {
+  const auto& m = object.mesh;
+  const auto box = m.bounds();
+  nlohmann::json loops = nlohmann::json::array();
+  for (const auto& loop : m.boundary_loops()) loops.push_back(loop.size());
+  return {
+      {"vertices", m.num_vertices()},
+      {"faces", m.num_faces()},
+      {"edges", m.num_edges()},
+      {"boundary_loop_sizes", loops},
+      {"area_mm2", m.total_area()},
+      {"bounds_min", {box.min().x(), box.min().y(), box.min().z()}},
+      {"bounds_max", {box.max().x(), box.max().y(), box.max().z()}},
+      {"position_hash", position_hash(m)},
+  };
+}
+
+}  // namespace sutura::app

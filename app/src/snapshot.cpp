@@ -1,0 +1,191 @@
+#include "snapshot.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace sutura::app {
+
+namespace {
+
+// Distinct, print-friendly surface colours per object, in creation order.
+constexpr std::array<render::Color, 4> kObjectColors = {{{0.86f, 0.42f, 0.38f},
+                                                         {0.40f, 0.58f, 0.85f},
+                                                         {0.55f, 0.75f, 0.45f},
+                                                         {0.85f, 0.70f, 0.35f}}};
+
+// Arrays for one object in one state; the renderer's spans point into these.
+struct ObjectArrays {
+  std::vector<float> positions;
+  std::vector<std::uint32_t> triangles;
+  std::vector<float> scalars;
+  std::vector<std::vector<render::Point3>> loops;
+  render::Color color{};
+};
+
+std::vector<float> field_values(Field field, const SceneObject& obj,
+                                const engine::SurfaceMesh& state) {
+  std::vector<float> v(state.num_vertices());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const engine::Vec3& p = state.positions()[i];
+    switch (field) {
+      case Field::X: v[i] = static_cast<float>(p.x()); break;
+      case Field::Y: v[i] = static_cast<float>(p.y()); break;
+      case Field::Z: v[i] = static_cast<float>(p.z()); break;
+      case Field::Displacement: {
+        if (obj.before.num_vertices() != state.num_vertices())
+          throw std::runtime_error("field 'displacement' needs object '" + obj.name +
+                                   "' to have the vertices it had when created");
+        v[i] = static_cast<float>((p - obj.before.positions()[i]).norm());
+        break;
+      }
+      case Field::None: break;
+    }
+  }
+  return v;
+}
+
+ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
+                        const engine::SurfaceMesh& state, render::Color color) {
+  ObjectArrays a;
+  a.positions = state.flat_positions();
+  a.triangles = state.flat_triangles();
+  if (op.field != Field::None) a.scalars = field_values(op.field, obj, state);
+  if (op.boundaries) {
+    for (const auto& loop : state.boundary_loops()) {
+      std::vector<render::Point3> pts;
+      pts.reserve(loop.size());
+      for (auto v : loop) {
+        const auto& p = state.position(v);
+        pts.push_back({float(p.x()), float(p.y()), float(p.z())});
+      }
+      a.loops.push_back(std::move(pts));
+    }
+  }
+  a.color = color;
+  return a;
+}
+
+render::Scene scene_for(const SnapshotOp& op, const std::vector<ObjectArrays>& arrays,
+                        const std::optional<render::ColorMap>& cmap) {
+  render::Scene scene;
+  for (const auto& a : arrays) {
+    render::SurfaceItem s;
+    s.positions = a.positions;
+    s.triangles = a.triangles;
+    s.scalars = a.scalars;
+    s.color = a.color;
+    s.wireframe = op.wireframe;
+    scene.surfaces.push_back(s);
+    for (const auto& loop : a.loops) {
+      render::PolylineItem line;
+      line.points = loop;
+      line.closed = true;
+      line.color = {0.15f, 0.15f, 0.15f};
+      line.width_px = 2.5f;
+      scene.polylines.push_back(std::move(line));
+    }
+  }
+  scene.color_map = cmap;
+  return scene;
+}
+
+std::string field_label(Field f) {
+  switch (f) {
+    case Field::Displacement: return "displacement [mm]";
+    case Field::X: return "x [mm]";
+    case Field::Y: return "y [mm]";
+    case Field::Z: return "z [mm]";
+    case Field::None: break;
+  }
+  return {};
+}
+
+render::Point3 to_point(const Vec3f& v) { return {float(v[0]), float(v[1]), float(v[2])}; }
+
+std::array<render::Point3, 2> merge(const std::array<render::Point3, 2>& a,
+                                    const std::array<render::Point3, 2>& b) {
+  std::array<render::Point3, 2> r = a;
+  for (int i = 0; i < 3; ++i) {
+    r[0][i] = std::min(a[0][i], b[0][i]);
+    r[1][i] = std::max(a[1][i], b[1][i]);
+  }
+  return r;
+}
+
+}  // namespace
+
+render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& workspace) {
+  std::vector<const SceneObject*> selected;
+  if (op.objects.empty()) {
+    for (const auto& o : workspace.objects()) selected.push_back(&o);
+  } else {
+    for (const auto& name : op.objects) {
+      const SceneObject* o = workspace.find(name);
+      if (o == nullptr)
+        throw std::runtime_error("no object named '" + name + "' (objects: " +
+                                 workspace.names() + ")");
+      selected.push_back(o);
+    }
+  }
+  if (selected.empty()) throw std::runtime_error("nothing to draw: the session has no objects yet");
+
+  std::vector<ObjectArrays> after, before;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    // Colour by position in the workspace so an object keeps its colour across snapshots.
+    const auto index = static_cast<std::size_t>(selected[i] - workspace.objects().data());
+    const render::Color color = kObjectColors[index % kObjectColors.size()];
+    after.push_back(arrays_for(op, *selected[i], selected[i]->mesh, color));
+    if (op.side_by_side) before.push_back(arrays_for(op, *selected[i], selected[i]->before, color));
+  }
+
+  std::optional<render::ColorMap> cmap;
+  if (op.field != Field::None) {
+    render::ColorMap c;
+    c.label = field_label(op.field);
+    if (op.range) {
+      c.min = float((*op.range)[0]);
+      c.max = float((*op.range)[1]);
+    } else {
+      float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+      for (const auto* set : {&after, &before})
+        for (const auto& a : *set)
+          for (float s : a.scalars) lo = std::min(lo, s), hi = std::max(hi, s);
+      // A constant field (e.g. displacement before anything moved) still needs a range.
+      if (!(hi > lo)) hi = lo + 1.0f;
+      c.min = lo;
+      c.max = hi;
+    }
+    if (op.field == Field::Displacement) c.name = render::ColorMapName::Viridis;
+    cmap = c;
+  }
+
+  const render::Scene after_scene = scene_for(op, after, cmap);
+  const render::Scene before_scene = scene_for(op, before, cmap);
+
+  // Both views share one camera so before and after are directly comparable.
+  const float aspect = float(op.width) / float(op.height);
+  render::Camera camera;
+  if (op.camera.eye) {
+    camera.eye = to_point(*op.camera.eye);
+    camera.target = to_point(*op.camera.target);
+    camera.up = to_point(op.camera.up);
+    camera.fov_y_deg = float(op.camera.fov_deg);
+  } else {
+    auto bounds = render::scene_bounds(after_scene);
+    if (op.side_by_side) bounds = merge(bounds, render::scene_bounds(before_scene));
+    camera = render::fit_camera(bounds, aspect, to_point(op.camera.view), to_point(op.camera.up),
+                                float(op.camera.fov_deg));
+  }
+
+  if (!renderer_) {
+    context_ = render::create_offscreen_context();
+    renderer_ = std::make_unique<render::Renderer>(*context_);
+  }
+  render::Image right = renderer_->render(after_scene, camera, op.width, op.height);
+  if (!op.side_by_side) return right;
+  render::Image left = renderer_->render(before_scene, camera, op.width, op.height);
+  return render::side_by_side(left, right, "Before", "After");
+}
+
+}  // namespace sutura::app

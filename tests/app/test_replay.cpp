@@ -1,0 +1,179 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "sutura/app/replay.hpp"
+#include "sutura/app/report.hpp"
+#include "sutura/engine/mesh_io.hpp"
+#include "sutura/render/image.hpp"
+
+namespace fs = std::filesystem;
+using namespace sutura::app;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("sutura_replay_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+sutura::render::Image read_png(const fs::path& p) {
+  std::string bytes = read_text(p);
+  return sutura::render::decode_png(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+}
+
+const fs::path kDefaultSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "default.jsonl";
+
+// Runs the sutura executable; returns its exit status and captures stderr.
+int run_sutura(const std::string& args, std::string* err_out) {
+  fs::path err = fs::temp_directory_path() / ("sutura_stderr_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(SUTURA_EXE) + " " + args + " 2> " + err.string();
+  const int status = std::system(cmd.c_str());
+  if (err_out) *err_out = read_text(err);
+  fs::remove(err);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST(Replay, DefaultSessionWritesSnapshotsMeshesAndReport) {
+  fs::path out = fresh_dir("default");
+  std::ostringstream progress;
+  ReplayOptions options;
+  options.out_dir = out;
+  options.progress = &progress;
+  ReplayResult result = replay(load_session(kDefaultSession), options);
+
+  EXPECT_NE(progress.str().find("snapshot"), std::string::npos);
+  ASSERT_TRUE(fs::exists(out / "report.json"));
+  auto report = nlohmann::json::parse(read_text(out / "report.json"));
+  EXPECT_EQ(report["status"], "ok");
+  EXPECT_EQ(report["actions"].size(), 7u);
+  for (const auto& a : report["actions"]) EXPECT_GE(a["seconds"].get<double>(), 0.0);
+  EXPECT_EQ(report["objects"]["aorta"]["boundary_loop_sizes"].size(), 2u);
+  EXPECT_EQ(report["objects"]["aorta"]["position_hash"],
+            position_hash(result.workspace.find("aorta")->mesh));
+
+  // Side-by-side before|after: twice as wide as one view (plus the gap), taller for captions.
+  auto both = read_png(out / "before_after.png");
+  EXPECT_GT(both.width, 2 * 960);
+  EXPECT_GE(both.height, 720);
+  auto single = read_png(out / "after.png");
+  EXPECT_EQ(single.width, 1280);
+  EXPECT_EQ(single.height, 960);
+  // Vessel at the centre, background at the corners.
+  const auto bg = single.pixel(0, 0);
+  EXPECT_EQ(single.pixel(single.width - 1, single.height - 1), bg);
+  EXPECT_NE(single.pixel(single.width / 2, single.height / 2), bg);
+
+  auto aorta = sutura::engine::load_mesh(out / "meshes" / "aorta.obj");
+  EXPECT_EQ(aorta.num_faces(), 2u * 32 * 48);
+  auto patch = sutura::engine::load_mesh(out / "meshes" / "patch.stl");
+  EXPECT_EQ(patch.num_faces(), result.workspace.find("patch")->mesh.num_faces());
+  fs::remove_all(out);
+}
+
+TEST(Replay, IsDeterministic) {
+  fs::path a = fresh_dir("det_a"), b = fresh_dir("det_b");
+  ReplayOptions oa, ob;
+  oa.out_dir = a;
+  ob.out_dir = b;
+  const Session s = load_session(kDefaultSession);
+  ReplayResult ra = replay(s, oa), rb = replay(s, ob);
+  for (const auto& obj : ra.workspace.objects())
+    EXPECT_EQ(position_hash(obj.mesh), position_hash(rb.workspace.find(obj.name)->mesh));
+  // Same pixels, byte for byte.
+  EXPECT_EQ(read_text(a / "before_after.png"), read_text(b / "before_after.png"));
+  fs::remove_all(a);
+  fs::remove_all(b);
+}
+
+TEST(Replay, FailureNamesLineAndKeepsAReport) {
+  fs::path dir = fresh_dir("fail");
+  fs::path session = dir / "s.jsonl";
+  std::ofstream(session) << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+                         << "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\"}\n"
+                         << "{\"op\": \"export\", \"object\": \"missing\", \"file\": \"m.obj\"}\n";
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  try {
+    replay(load_session(session), o);
+    FAIL() << "replay should fail";
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("no object named 'missing'"), std::string::npos);
+  }
+  auto report = nlohmann::json::parse(read_text(dir / "out" / "report.json"));
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_NE(report["error"].get<std::string>().find(":3:"), std::string::npos);
+  EXPECT_TRUE(report["objects"].contains("a"));
+  fs::remove_all(dir);
+}
+
+TEST(Replay, LoadsMeshRelativeToSessionAndReportsBadMeshWithFileName) {
+  fs::path dir = fresh_dir("load");
+  fs::create_directories(dir / "meshes");
+  std::ofstream(dir / "meshes" / "bad.obj") << "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "s.jsonl") << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+                                 << "{\"op\": \"load\", \"object\": \"a\", \"file\": \"meshes/bad.obj\"}\n";
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  try {
+    replay(load_session(dir / "s.jsonl"), o);
+    FAIL();
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("bad.obj"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SuturaCli, ReplayDefaultSessionEndToEnd) {
+  fs::path out = fresh_dir("cli");
+  std::string err;
+  ASSERT_EQ(run_sutura("replay " + kDefaultSession.string() + " --out " + out.string(), &err), 0)
+      << err;
+  EXPECT_NE(err.find("position hash"), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "before_after.png"));
+  EXPECT_TRUE(fs::exists(out / "meshes" / "aorta.obj"));
+  EXPECT_EQ(nlohmann::json::parse(read_text(out / "report.json"))["status"], "ok");
+  fs::remove_all(out);
+}
+
+TEST(SuturaCli, BadSessionExitsNonZeroWithLineNumber) {
+  fs::path dir = fresh_dir("clibad");
+  std::ofstream(dir / "s.jsonl") << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+                                 << "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\", \"radius\": 0}\n";
+  std::string err;
+  EXPECT_EQ(run_sutura("replay " + (dir / "s.jsonl").string() + " --out " + (dir / "out").string(), &err), 1);
+  EXPECT_NE(err.find("s.jsonl:2"), std::string::npos) << err;
+  EXPECT_NE(err.find("radius"), std::string::npos) << err;
+  EXPECT_NE(run_sutura("replay /nonexistent.jsonl", &err), 0);
+  EXPECT_NE(err.find("no such file"), std::string::npos) << err;
+  EXPECT_NE(run_sutura("frobnicate", &err), 0);
+  fs::remove_all(dir);
+}
+
+TEST(SuturaCli, EscapingSessionIsRejectedBeforeWriting) {
+  fs::path dir = fresh_dir("cliesc");
+  std::ofstream(dir / "s.jsonl") << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+                                 << "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\"}\n"
+                                 << "{\"op\": \"export\", \"object\": \"a\", \"file\": \"../../escaped.obj\"}\n";
+  std::string err;
+  EXPECT_EQ(run_sutura("replay " + (dir / "s.jsonl").string() + " --out " + (dir / "out").string(), &err), 1);
+  EXPECT_NE(err.find("s.jsonl:3"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "escaped.obj"));
+  EXPECT_FALSE(fs::exists(dir.parent_path() / "escaped.obj"));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,163 @@
+#include <gtest/gtest.h>
+
+#include "sutura/app/session.hpp"
+
+using namespace sutura::app;
+
+namespace {
+
+const std::string kHeader = R"({"format": "sutura-session", "version": 1})" "\n";
+
+Session parse(const std::string& body) { return parse_session(kHeader + body, "/data/s.jsonl"); }
+
+// Parses and returns the error; fails the test if parsing succeeds.
+SessionError parse_error(const std::string& text) {
+  try {
+    parse_session(text, "s.jsonl");
+  } catch (const SessionError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected a SessionError for:\n" << text;
+  return SessionError("", 0, "", "", "");
+}
+
+}  // namespace
+
+TEST(SessionParse, HeaderOnlyIsAnEmptySession) {
+  Session s = parse("");
+  EXPECT_EQ(s.version, 1);
+  EXPECT_TRUE(s.actions.empty());
+}
+
+TEST(SessionParse, AllOpsWithFieldsAndLineNumbers) {
+  Session s = parse(
+      "{\"op\": \"generate\", \"object\": \"aorta\", \"shape\": \"tube\", \"radius\": 4.5, "
+      "\"segments_around\": 24, \"translate\": [1, 2, 3]}\n"
+      "\n"
+      "{\"op\": \"load\", \"object\": \"pa\", \"file\": \"../meshes/pa.stl\"}\n"
+      "{\"op\": \"snapshot\", \"file\": \"shots/a.png\", \"width\": 320, \"height\": 200, "
+      "\"field\": \"z\", \"range\": [0, 5], \"side_by_side\": true, "
+      "\"camera\": {\"view\": [0, 1, 0], \"fov_deg\": 40}}\n"
+      "{\"op\": \"export\", \"object\": \"aorta\", \"file\": \"aorta.ply\", \"note\": \"final\"}\n"
+      "{\"op\": \"report\", \"file\": \"r.json\"}\n");
+  ASSERT_EQ(s.actions.size(), 5u);
+  EXPECT_EQ(s.actions[0].line, 2);
+  EXPECT_EQ(s.actions[1].line, 4);  // blank line 3 skipped
+  const auto& g = std::get<GenerateOp>(s.actions[0].op);
+  const auto& tube = std::get<sutura::engine::TubeParams>(g.params);
+  EXPECT_DOUBLE_EQ(tube.radius, 4.5);
+  EXPECT_EQ(tube.segments_around, 24);
+  EXPECT_EQ(tube.segments_along, sutura::engine::TubeParams{}.segments_along);
+  EXPECT_DOUBLE_EQ(g.translate[2], 3.0);
+  const auto& l = std::get<LoadOp>(s.actions[1].op);
+  EXPECT_EQ(l.file, std::filesystem::path("/data/../meshes/pa.stl"));
+  const auto& snap = std::get<SnapshotOp>(s.actions[2].op);
+  EXPECT_EQ(snap.width, 320);
+  EXPECT_EQ(snap.field, Field::Z);
+  ASSERT_TRUE(snap.range.has_value());
+  EXPECT_DOUBLE_EQ((*snap.range)[1], 5.0);
+  EXPECT_TRUE(snap.side_by_side);
+  EXPECT_DOUBLE_EQ(snap.camera.view[1], 1.0);
+  EXPECT_DOUBLE_EQ(snap.camera.fov_deg, 40.0);
+  EXPECT_EQ(std::get<ExportOp>(s.actions[3].op).file, std::filesystem::path("aorta.ply"));
+}
+
+TEST(SessionParse, PatchShapes) {
+  Session s = parse(
+      "{\"op\": \"generate\", \"object\": \"p\", \"shape\": \"diamond\", \"length\": 12, "
+      "\"width\": 5, \"edge_length\": 0.5}\n");
+  const auto& p = std::get<sutura::engine::PatchParams>(std::get<GenerateOp>(s.actions[0].op).params);
+  EXPECT_EQ(p.shape, sutura::engine::PatchShape::Diamond);
+  EXPECT_DOUBLE_EQ(p.target_edge_length, 0.5);
+}
+
+struct BadCase {
+  std::string text;
+  int line;
+  std::string field;
+  std::string phrase;
+};
+
+class SessionParseErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SessionParseErrors, CitesLineFieldAndProblem) {
+  const BadCase& c = GetParam();
+  SessionError e = parse_error(c.text);
+  EXPECT_EQ(e.line(), c.line) << e.what();
+  EXPECT_EQ(e.field(), c.field) << e.what();
+  EXPECT_NE(std::string(e.what()).find(c.phrase), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("s.jsonl"), std::string::npos) << e.what();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SessionParseErrors,
+    ::testing::Values(
+        BadCase{"", 0, "", "no header"},
+        BadCase{"{\"op\": \"generate\"}\n", 1, "format", "first line must be the header"},
+        BadCase{"{\"format\": \"other\", \"version\": 1}\n", 1, "format", "sutura-session"},
+        BadCase{"{\"format\": \"sutura-session\", \"version\": 99}\n", 1, "version", "newer"},
+        BadCase{kHeader + "{\"op\": \"generate\", \n", 2, "", "not valid JSON"},
+        BadCase{kHeader + "[1, 2]\n", 2, "", "JSON object"},
+        BadCase{kHeader + "{\"object\": \"a\"}\n", 2, "op", "missing"},
+        BadCase{kHeader + "{\"op\": \"explode\"}\n", 2, "op", "unknown op"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"shape\": \"tube\"}\n", 2, "object", "missing"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"cube\"}\n", 2,
+                "shape", "not one of"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\", "
+                          "\"radius\": -1}\n",
+                2, "radius", "greater than 0"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\", "
+                          "\"radius\": \"big\"}\n",
+                2, "radius", "must be a number"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\", "
+                          "\"segments_around\": 2.5}\n",
+                2, "segments_around", "whole number"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"tube\", "
+                          "\"radus\": 3}\n",
+                2, "radus", "unknown field"},
+        BadCase{kHeader + "{\"op\": \"generate\", \"object\": \"a b\", \"shape\": \"tube\"}\n", 2,
+                "object", "letters, digits"},
+        BadCase{kHeader + "\n{\"op\": \"snapshot\", \"file\": \"x.jpg\"}\n", 3, "file", ".png"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"width\": 0}\n", 2,
+                "width", "between"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"camera\": "
+                          "{\"eye\": [0, 0, 1]}}\n",
+                2, "camera.target", "together"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"camera\": "
+                          "{\"eye\": [0, 0, 1], \"target\": [0, 0, 0], \"zoom\": 2}}\n",
+                2, "camera.zoom", "unknown field"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"range\": [0, 1]}\n", 2,
+                "range", "colour field"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"field\": \"z\", "
+                          "\"range\": [1, 0]}\n",
+                2, "range", "min < max"},
+        BadCase{kHeader + "{\"op\": \"export\", \"object\": \"a\", \"file\": \"/tmp/a.obj\"}\n", 2,
+                "file", "absolute"},
+        BadCase{kHeader + "{\"op\": \"export\", \"object\": \"a\", \"file\": \"../a.obj\"}\n", 2,
+                "file", "'..'"},
+        BadCase{kHeader + "{\"op\": \"report\", \"file\": \"x/../../r.json\"}\n", 2, "file",
+                "'..'"},
+        BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"a.stl\", "
+                          "\"weld_tolerance\": 0.5}\n",
+                2, "weld_tolerance", "between"}));
+
+TEST(SessionLoad, MissingFileAndDirectory) {
+  EXPECT_THROW(load_session("/nonexistent/session.jsonl"), SessionError);
+  try {
+    load_session(std::filesystem::temp_directory_path());
+    FAIL();
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos);
+  }
+}
+
+TEST(SessionLoad, BundledSessionsParse) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::recursive_directory_iterator(std::string(SUTURA_ASSETS_DIR) + "/sessions")) {
+    if (entry.path().extension() != ".jsonl") continue;
+    EXPECT_NO_THROW(load_session(entry.path())) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 1);
+}

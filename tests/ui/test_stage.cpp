@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include "sutura/ui/stage.hpp"
+
+using namespace sutura::ui;
+
+TEST(StageMachine, StartsInPlanWithoutMeshAndGatesEdits) {
+  StageMachine m;
+  EXPECT_EQ(m.stage(), Stage::Plan);
+  EXPECT_TRUE(m.allowed(Action::OpenMesh));
+  auto why = m.why_disabled(Action::Incise);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_NE(why->find("Open a mesh"), std::string::npos);
+  EXPECT_FALSE(m.allowed(Action::StartSimulation));
+  EXPECT_THROW(m.simulation_started(), std::logic_error);
+}
+
+TEST(StageMachine, FullCycleAndContinuePlanning) {
+  StageMachine m;
+  m.mesh_loaded();
+  EXPECT_TRUE(m.allowed(Action::Incise));
+  EXPECT_TRUE(m.allowed(Action::Undo));
+  EXPECT_FALSE(m.allowed(Action::ToggleBeforeAfter));
+  m.simulation_started();
+  EXPECT_EQ(m.stage(), Stage::Simulate);
+  EXPECT_TRUE(m.allowed(Action::PauseResume));
+  EXPECT_FALSE(m.allowed(Action::Incise));
+  EXPECT_NE(m.why_disabled(Action::Suture)->find("simulation runs"), std::string::npos);
+  m.simulation_finished();
+  EXPECT_EQ(m.stage(), Stage::Inspect);
+  EXPECT_TRUE(m.allowed(Action::MeasureCrossSection));
+  EXPECT_TRUE(m.allowed(Action::SaveSnapshot));
+  EXPECT_FALSE(m.allowed(Action::Incise));
+  EXPECT_FALSE(m.allowed(Action::CancelSimulation));
+  m.continue_planning();
+  EXPECT_EQ(m.stage(), Stage::Plan);
+  EXPECT_TRUE(m.allowed(Action::Incise));
+}
+
+TEST(StageMachine, CancelReturnsToPlan) {
+  StageMachine m;
+  m.mesh_loaded();
+  m.simulation_started();
+  m.simulation_cancelled();
+  EXPECT_EQ(m.stage(), Stage::Plan);
+  EXPECT_THROW(m.simulation_finished(), std::logic_error);
+  EXPECT_THROW(m.simulation_cancelled(), std::logic_error);
+}
+
+TEST(StageMachine, EveryDisabledActionExplainsWhy) {
+  StageMachine m;
+  for (int s = 0; s < 3; ++s) {
+    for (int a = 0; a <= static_cast<int>(Action::ContinuePlanning); ++a) {
+      auto why = m.why_disabled(static_cast<Action>(a));
+      if (why) EXPECT_GT(why->size(), 10u) << to_string(static_cast<Action>(a));
+    }
+    if (s == 0) { m.mesh_loaded(); m.simulation_started(); }
+    else if (s == 1) m.simulation_finished();
+  }
+}
