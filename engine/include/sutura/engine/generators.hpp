@@ -26,6 +26,20 @@ struct StripParams {
 };
 SurfaceMesh make_strip(const StripParams& p);
 
+/// Open cylindrical panel: axis along +y from y = 0 to y = length, points at angle theta
+/// (measured from +z towards +x) lie at (R sin theta, y, R cos theta). Used by the shell
+/// benchmarks (Scordelis-Lo roof: theta in [-40, 40] deg; pinched-cylinder octant: [0, 90]).
+/// Normals point outward (away from the axis).
+struct CylinderPanelParams {
+  double radius = 25.0;         ///< mm, > 0
+  double length = 50.0;         ///< mm, > 0
+  double angle_start_deg = -40.0;
+  double angle_end_deg = 40.0;  ///< > angle_start_deg, span at most 360
+  int segments_around = 16;     ///< >= 1
+  int segments_along = 16;      ///< >= 1
+};
+SurfaceMesh make_cylinder_panel(const CylinderPanelParams& p);
+
 enum class PatchShape { Ellipse, Diamond, Triangle };
 
 /// Flat patch in the z = 0 plane centred at the origin, long axis along x.
@@ -36,7 +50,9 @@ struct PatchParams {
   PatchShape shape = PatchShape::Ellipse;
   double length = 20.0;            ///< mm, > 0
   double width = 8.0;              ///< mm, > 0
-  double target_edge_length = 1.0; ///< mm, > 0; boundary and interior spacing aimed for
+  /// mm, > 0; boundary and interior spacing aimed for. Reduced when the patch is too narrow
+  /// for two rows of triangles of that size across it, so that triangles stay well shaped.
+  double target_edge_length = 1.0;
 };
 SurfaceMesh make_patch(const PatchParams& p);
 

@@ -71,8 +71,9 @@ class SurfaceMesh {
   [[nodiscard]] bool is_boundary(HalfedgeId h) const { return !twin_[h.index()].valid(); }
 
   // --- vertices ----------------------------------------------------------------------------
-  /// An outgoing half-edge of v; for a boundary vertex it is the outgoing boundary half-edge,
-  /// so that rotating clockwise from it visits the whole fan.
+  /// An outgoing half-edge of v; for a boundary vertex it is the outgoing boundary half-edge
+  /// (the one without twin), so that rotating counter-clockwise from it, h -> twin(prev(h)),
+  /// visits the whole fan; for an interior vertex it is the lowest outgoing half-edge id.
   [[nodiscard]] HalfedgeId vertex_halfedge(VertexId v) const { return vertex_halfedge_[v.index()]; }
   [[nodiscard]] bool is_boundary(VertexId v) const;
   /// Faces around v in fan order (counter-clockwise seen from the normal side). O(valence).

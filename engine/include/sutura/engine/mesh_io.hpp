@@ -9,7 +9,7 @@ namespace sutura::engine {
 struct ImportOptions {
   /// Vertices closer than weld_tolerance * (bounding-box diagonal) are merged into one.
   /// STL stores every triangle's corners separately, so welding is what makes it a mesh.
-  /// 0 merges exact duplicates only. Dimensionless, >= 0.
+  /// 0 (or anything below 1e-12) merges exact duplicates only. Dimensionless, >= 0.
   double weld_tolerance = 1e-6;
 };
 
