@@ -55,8 +55,8 @@ WindowContext::WindowContext(int width, int height, const std::string& title, bo
 
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window_ == nullptr) {
-    const std::string message = "cannot create a window with an OpenGL 3.3 core context: " +
-                                last_glfw_error();
+    const std::string message =
+        "cannot create a window with an OpenGL 3.3 core context: " + last_glfw_error();
     if (--g_live_windows == 0) glfwTerminate();
     throw GlError(message);
   }
@@ -68,7 +68,14 @@ WindowContext::~WindowContext() {
   if (--g_live_windows == 0) glfwTerminate();
 }
 
-void WindowContext::make_current() { glfwMakeContextCurrent(as_glfw(window_)); }
+void WindowContext::make_current() {
+  // libOSMesa and Mesa's GLX driver share one current-context slot (libglapi), but GLVND
+  // skips glXMakeCurrent when it believes this context is already current. After an
+  // OSMesaMakeCurrent on this thread that belief is stale, so release first to force a real
+  // rebind. Costs two glXMakeCurrent calls (a flush), negligible per frame.
+  glfwMakeContextCurrent(nullptr);
+  glfwMakeContextCurrent(as_glfw(window_));
+}
 
 void* WindowContext::proc_address(const char* name) const {
   return reinterpret_cast<void*>(glfwGetProcAddress(name));

@@ -6,8 +6,8 @@
 namespace sutura::render {
 
 GlApi::GlApi(const GlContext& context) {
-#define SUTURA_GL_LOAD(type, name)                                                    \
-  name = reinterpret_cast<type>(context.proc_address("gl" #name));                    \
+#define SUTURA_GL_LOAD(type, name)                                 \
+  name = reinterpret_cast<type>(context.proc_address("gl" #name)); \
   if (name == nullptr) throw GlError("OpenGL entry point gl" #name " is not available");
   SUTURA_GL_FUNCTIONS(SUTURA_GL_LOAD)
 #undef SUTURA_GL_LOAD

@@ -30,6 +30,11 @@ std::unique_ptr<GlContext> create_offscreen_context();
 
 /// A GLFW window with a 3.3 core context. `visible = false` creates a hidden window.
 /// Throws GlError when no display is available or context creation fails.
+/// GLFW rules apply: create, use and destroy windows on the main thread only.
+/// Mixing with an off-screen context on one thread: OSMesa and Mesa's GLX share one
+/// "current context" slot that GLFW does not see, so after any off-screen rendering call
+/// make_current() (not glfwMakeContextCurrent) before further GL calls or glfwSwapBuffers
+/// on the window.
 class WindowContext : public GlContext {
  public:
   WindowContext(int width, int height, const std::string& title, bool visible = true);

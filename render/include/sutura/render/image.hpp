@@ -16,19 +16,27 @@ struct Image {
   std::vector<std::uint8_t> rgba;  ///< 4 * width * height bytes
 
   Image() = default;
+  /// Throws std::invalid_argument for a negative size.
   Image(int w, int h, Rgba fill = {255, 255, 255, 255});
+  /// Pixel access, (0, 0) top-left; throw std::out_of_range outside the image.
   [[nodiscard]] Rgba pixel(int x, int y) const;
   void set_pixel(int x, int y, Rgba c);
 };
 
 /// PNG file content of `image` (no file is written; callers write it atomically).
+/// Throws std::invalid_argument for an empty or inconsistent image. Uses stb_image_write
+/// with the Sub row filter at compression level 5 (set once, process-wide, in stb's
+/// globals). Cost: about 0.1 s for a 1920x1080 render, as much as rendering it.
 std::vector<std::uint8_t> encode_png(const Image& image);
 /// Decodes PNG bytes (tests and tools); throws std::runtime_error on malformed data.
 Image decode_png(const std::vector<std::uint8_t>& bytes);
 
 /// Places `left` and `right` next to each other separated by `gap` pixels of `background`,
 /// each with an optional caption drawn above it (e.g. "Before", "After"). Images of different
-/// heights are top-aligned on the background.
+/// heights are top-aligned on the background. Captions use a built-in bitmap font (ASCII;
+/// other bytes show as '?'), 2 px per font unit, centred and clipped to their image's
+/// width, dark on light backgrounds and light on dark ones; with any caption the images
+/// sit below a 30-pixel caption band. Throws std::invalid_argument for a negative gap.
 Image side_by_side(const Image& left, const Image& right, const std::string& left_caption = {},
                    const std::string& right_caption = {}, int gap = 8,
                    Rgba background = {255, 255, 255, 255});

@@ -1,8 +1,11 @@
 #pragma once
 // The OpenGL 3.3 core renderer shared by headless snapshots and the GUI.
 //
-// Cost: constructing compiles the shaders (a few ms on llvmpipe); each draw uploads the
-// scene's arrays to GL buffers, so scene arrays may change freely between calls.
+// Cost: constructing compiles the shaders (a few ms on llvmpipe); llvmpipe JIT-compiles
+// them at the first render of a process (~0.1-0.4 s, less when Mesa's on-disk shader cache,
+// ~/.cache/mesa_shader_cache, already holds them). Each draw uploads the scene's arrays to
+// GL buffers (reusing their storage), so scene arrays may change freely between calls.
+// A Renderer and its context are used by one thread at a time.
 #include <memory>
 
 #include "sutura/render/camera.hpp"
@@ -25,13 +28,21 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Renders into an off-screen multisampled framebuffer and reads it back.
-  /// Throws GlError on GL failure or a size outside [1, 8192].
+  /// Makes the context current, renders into an off-screen framebuffer with
+  /// options.samples samples (clamped to [1, GL_MAX_SAMPLES]; 4 on llvmpipe), resolves it
+  /// and reads it back (top row first, alpha 255). The framebuffer bindings found on entry
+  /// are restored. Same scene, camera, size and options give the same bytes on one build.
+  /// Throws GlError on GL failure or a size outside [1, 8192] (the message names the size),
+  /// std::invalid_argument for inconsistent surface arrays (see SurfaceItem) or a camera
+  /// that view_matrix/projection_matrix reject.
   Image render(const Scene& scene, const Camera& camera, int width, int height,
                const RenderOptions& options = {});
 
   /// Draws into the currently bound framebuffer (the GUI's window) with a viewport of
-  /// width x height.
+  /// width x height, clearing it first. The context must be current. Anti-aliasing is that
+  /// of the bound framebuffer (WindowContext asks for 4 samples); options.samples is
+  /// ignored. Leaves depth test off and program, vertex array, buffer and texture bindings
+  /// at 0. Throws like render().
   void draw(const Scene& scene, const Camera& camera, int width, int height,
             const RenderOptions& options = {});
 
