@@ -1,0 +1,35 @@
+// Validation of ShellMaterial parameters (see material.hpp).
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/shell/material.hpp"
+
+namespace sutura::engine {
+namespace {
+
+[[noreturn]] void fail(const char* field, double value, const char* requirement) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "ShellMaterial." << field << " = " << value << " is invalid: must be " << requirement;
+  throw InvalidArgument(os.str());
+}
+
+}  // namespace
+
+void validate(const ShellMaterial& m) {
+  // The negated comparisons also reject NaN.
+  if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus))
+    fail("youngs_modulus", m.youngs_modulus, "finite and > 0 (MPa)");
+  if (!(m.poisson_ratio >= 0.0 && m.poisson_ratio < 0.5))
+    fail("poisson_ratio", m.poisson_ratio, "in [0, 0.5)");
+  if (!(m.thickness > 0.0) || !std::isfinite(m.thickness))
+    fail("thickness", m.thickness, "finite and > 0 (mm)");
+  if (!(m.density > 0.0) || !std::isfinite(m.density))
+    fail("density", m.density, "finite and > 0 (t/mm^3)");
+  if (!(m.drilling_factor > 0.0) || !std::isfinite(m.drilling_factor))
+    fail("drilling_factor", m.drilling_factor, "finite and > 0");
+}
+
+}  // namespace sutura::engine
