@@ -1,0 +1,49 @@
+#pragma once
+// Implicit (backward) Euler dynamics with lumped mass and Rayleigh damping C = alpha*M + beta*K.
+// Unconditionally stable, numerically dissipative: what "settling" and rest-shape relaxation
+// need (paper, Sec. 2.3). Each step solves the nonlinear step equation with Newton.
+#include <functional>
+#include <string>
+
+#include "sutura/engine/sim/linear_solver.hpp"
+#include "sutura/engine/sim/shell_system.hpp"
+
+namespace sutura::engine {
+
+struct DynamicsParams {
+  double dt = 1e-3;            ///< s, > 0
+  int steps = 100;             ///< >= 1
+  double mass_damping = 10.0;  ///< Rayleigh alpha, 1/s, >= 0
+  double stiffness_damping = 1e-3;  ///< Rayleigh beta, s, >= 0
+  double tolerance = 1e-8;     ///< Newton tolerance per step, relative to the step's first residual
+  int max_iterations = 10;     ///< Newton iterations per step
+  LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
+  PcgParams pcg;
+};
+
+struct DynamicsState {
+  ShellState shell;
+  Eigen::VectorXd velocity;  ///< full DOFs (translational mm/s, angular rad/s); empty = at rest
+};
+
+struct DynamicsResult {
+  bool ok = true;
+  int steps_done = 0;
+  int newton_iterations = 0;
+  double kinetic_energy = 0.0;  ///< N*mm at the end
+  double strain_energy = 0.0;   ///< N*mm at the end
+  double residual = 0.0;        ///< static residual |g_int - f_ext| at the end (free DOFs)
+  std::string message;          ///< why the run stopped early (state rolled back to the last good step)
+};
+
+/// Called before every step with the step index; lets relaxation update the rest state
+/// (the system's problem.rest may be changed through the pointer it owns) and report progress.
+/// Return false to stop.
+using StepHook = std::function<bool(int step)>;
+
+/// Advances `state` by params.steps steps of size dt. Divergence (NaN, energy blow-up, Newton
+/// failure) rolls back to the last good step and returns ok = false with a message.
+DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
+                                 const DynamicsParams& params, const StepHook& hook = {});
+
+}  // namespace sutura::engine

@@ -1,0 +1,42 @@
+#pragma once
+// Sparse symmetric linear solvers for Newton and implicit dynamics, selectable:
+//  - Cholmod: supernodal sparse Cholesky (SuiteSparse CHOLMOD, BLAS = OpenBLAS). Symbolic
+//    analysis is reused while the sparsity pattern stays the same (all Newton iterations of
+//    a run). Falls back to LDL^T when the matrix is not positive definite (buckling, or a
+//    compressed state far from equilibrium).
+//  - Ldlt: Eigen's simplicial LDL^T (no external dependency).
+//  - Pcg: preconditioned conjugate gradient (the paper's choice, Sec. 2.1), incomplete
+//    Cholesky preconditioner.
+#include <memory>
+#include <string>
+
+#include <Eigen/Sparse>
+
+namespace sutura::engine {
+
+enum class LinearSolverKind { Cholmod, Ldlt, Pcg };
+
+/// "cholmod" | "ldlt" | "pcg"; throws InvalidArgument otherwise.
+LinearSolverKind parse_linear_solver(const std::string& name);
+std::string to_string(LinearSolverKind k);
+
+struct PcgParams {
+  double tolerance = 1e-10;  ///< relative residual of the linear solve
+  int max_iterations = 20000;
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// Factorises (or prepares) A (symmetric; full storage). Returns false when the
+  /// factorisation fails (singular matrix); the caller reports it.
+  virtual bool factorize(const Eigen::SparseMatrix<double>& A) = 0;
+  /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
+  virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// What happened in the last call, e.g. "cholmod fell back to LDL^T (not positive definite)".
+  [[nodiscard]] virtual std::string last_note() const { return {}; }
+};
+
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const PcgParams& pcg = {});
+
+}  // namespace sutura::engine

@@ -1,0 +1,51 @@
+#pragma once
+// External loads. All scale with the load factor lambda of the static solver.
+//  - nodal forces/moments (N, N*mm),
+//  - line loads along a chain of vertices (N/mm), lumped once into nodal forces by tributary
+//    length on the geometry when the load is applied (a dead load),
+//  - follower pressure on faces (MPa = N/mm^2, along the current face normal: depends on the
+//    state and contributes a load stiffness),
+//  - body force per rest area (N/mm^2, e.g. self weight of Scordelis-Lo: 90 per unit area).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "sutura/engine/shell/shell_model.hpp"
+
+namespace sutura::engine {
+
+struct NodalLoad {
+  std::size_t node = 0;
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();  ///< needs a 6-DOF model
+};
+
+struct PressureLoad {
+  std::vector<FaceId> faces;  ///< empty = every face
+  double pressure = 0.0;      ///< MPa, positive along the face normal (right-hand corner order)
+};
+
+struct Loads {
+  std::vector<NodalLoad> nodal;
+  std::vector<PressureLoad> pressures;
+  Vec3 body_force_per_area = Vec3::Zero();  ///< N/mm^2 on rest area
+
+  [[nodiscard]] bool empty() const;
+  [[nodiscard]] bool has_moments() const;
+};
+
+/// Nodal forces equivalent to `force_per_length` (N/mm) along the polyline through `chain`
+/// (consecutive vertices; at least 2): each segment's load split half to each end (exact for
+/// linear interpolation of a constant line load). Throws InvalidArgument for a short chain.
+std::vector<NodalLoad> lump_line_load(const std::vector<Vec3>& positions,
+                                      const std::vector<VertexId>& chain,
+                                      const Vec3& force_per_length);
+
+/// External force vector at load factor `lambda` (size num_nodes * dofs) and, when K is given,
+/// the triplets of MINUS its derivative w.r.t. the DOFs (the follower-pressure load stiffness
+/// to be added to the tangent), symmetrised. Throws InvalidArgument for moments with a
+/// 3-DOF model.
+void external_forces(const ShellProblem& p, const ShellState& s, const Loads& loads,
+                     double lambda, int dofs_per_node, Eigen::VectorXd& f, Triplets* K);
+
+}  // namespace sutura::engine

@@ -1,0 +1,56 @@
+#pragma once
+// A simulation problem: the shell model, its problem data (faces, per-element rest state,
+// materials), constraints and loads. Several objects can be simulated together by merging
+// them into one problem with disjoint node ranges.
+//
+// Residual convention: r(u) = g_int(u) - f_ext(u, lambda), equilibrium at r = 0; fixed DOFs
+// are eliminated (the reduced system only has free DOFs).
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/constraints.hpp"
+#include "sutura/engine/sim/loads.hpp"
+
+namespace sutura::engine {
+
+struct ShellSystem {
+  const ShellModel* model = nullptr;
+  ShellProblem problem;
+  Constraints constraints;
+  Loads loads;        ///< scaled by the load factor lambda
+  Loads fixed_loads;  ///< always at full value (loads already brought to equilibrium earlier)
+
+  [[nodiscard]] int dofs_per_node() const { return model->dofs_per_node(); }
+  [[nodiscard]] std::size_t num_dofs() const { return problem.num_nodes * dofs_per_node(); }
+};
+
+/// Maps full DOF indices to the free (unconstrained) ones.
+struct DofMap {
+  std::vector<int> full_to_free;  ///< -1 for fixed DOFs
+  std::vector<int> free_to_full;
+  explicit DofMap(const ShellSystem& sys);
+  [[nodiscard]] std::size_t num_free() const { return free_to_full.size(); }
+  [[nodiscard]] Eigen::VectorXd restrict(const Eigen::VectorXd& full) const;
+  [[nodiscard]] Eigen::VectorXd expand(const Eigen::VectorXd& free) const;  ///< zeros at fixed
+};
+
+/// Energy/residual/tangent evaluation on the free DOFs.
+struct Evaluation {
+  double internal_energy = 0.0;  ///< N*mm
+  Eigen::VectorXd residual;      ///< free DOFs, N (or N*mm for rotations)
+  double external_norm = 0.0;    ///< |f_ext| over free DOFs (reference for tolerances)
+  Eigen::SparseMatrix<double> tangent;  ///< free x free, only when requested
+};
+
+/// Computes the residual (and tangent) at load factor lambda.
+/// Cost: one model evaluation, O(F), plus sparse assembly when the tangent is requested.
+Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
+                    bool with_tangent);
+
+/// Lumped nodal masses (per full DOF): translational rho*t*A/3 per corner; rotational
+/// rho*t*A/3 * max(t^2/12, A/12) so rotations are not massless (no effect on statics).
+Eigen::VectorXd lumped_mass(const ShellSystem& sys);
+
+}  // namespace sutura::engine

@@ -1,0 +1,54 @@
+#pragma once
+// Static equilibrium: Newton-Raphson with load stepping and a backtracking line search on the
+// residual norm. Divergence (NaN/inf, energy blow-up, no convergence) rolls the state back to
+// the last converged load step, retries with halved load increments, and is reported.
+#include <string>
+#include <vector>
+
+#include "sutura/engine/sim/linear_solver.hpp"
+#include "sutura/engine/sim/shell_system.hpp"
+
+namespace sutura::engine {
+
+struct StaticSolverParams {
+  /// The loads are scaled by lambda, stepped from lambda_start (where `state` is in
+  /// equilibrium, e.g. 0 for an unloaded start or the end factor of a previous solve) to
+  /// lambda_end in load_steps equal increments.
+  double lambda_start = 0.0;
+  double lambda_end = 1.0;
+  int load_steps = 1;            ///< >= 1
+  double tolerance = 1e-8;       ///< converged when |r| <= tolerance * max(|f_ext|, |r_0|), relative
+  int max_iterations = 30;       ///< Newton iterations per load step, >= 1
+  bool line_search = true;       ///< backtrack (halving, up to 10 times) while |r| does not decrease
+  int max_step_cuts = 6;         ///< a failed load step is retried with half the increment this often
+  double energy_blowup = 1e12;   ///< energy above this factor times the largest energy seen so far = divergence
+  LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
+  PcgParams pcg;
+  /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the tangent of the
+  /// start state, no iteration (the small-displacement answer of the linear benchmarks).
+  bool linear = false;
+};
+
+struct NewtonIteration {
+  double lambda = 0.0;
+  int iteration = 0;
+  double residual = 0.0;  ///< |r| over free DOFs
+  double energy = 0.0;    ///< internal strain energy, N*mm
+  double step_length = 1.0;
+};
+
+struct StaticResult {
+  bool converged = false;
+  double lambda_reached = 0.0;  ///< last converged load factor (lambda_end when converged)
+  int iterations = 0;           ///< total Newton iterations
+  double residual = 0.0;
+  double energy = 0.0;
+  std::vector<NewtonIteration> history;
+  std::string message;  ///< empty on success; otherwise what went wrong and what was rolled back
+};
+
+/// Solves sys for equilibrium starting from `state` (modified in place; on failure it holds the
+/// last converged load step). Throws InvalidArgument for invalid parameters.
+StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params);
+
+}  // namespace sutura::engine

@@ -1,0 +1,134 @@
+#include "sutura/engine/sim/linear_solver.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+LinearSolverKind parse_linear_solver(const std::string& name) {
+  if (name == "cholmod") return LinearSolverKind::Cholmod;
+  if (name == "ldlt") return LinearSolverKind::Ldlt;
+  if (name == "pcg") return LinearSolverKind::Pcg;
+  throw InvalidArgument("unknown linear solver '" + name + "' (cholmod, ldlt, pcg)");
+}
+
+std::string to_string(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::Cholmod: return "cholmod";
+    case LinearSolverKind::Ldlt: return "ldlt";
+    case LinearSolverKind::Pcg: return "pcg";
+  }
+  return "?";
+}
+
+namespace {
+
+// True when A has the same sparsity pattern as the one analysed last (then the symbolic
+// factorisation, the expensive ordering step, is reused).
+class PatternCache {
+ public:
+  bool same(const SpMat& A) {
+    const auto* outer = A.outerIndexPtr();
+    const auto* inner = A.innerIndexPtr();
+    const bool same = rows_ == A.rows() && nnz_ == A.nonZeros() &&
+                      std::equal(outer, outer + A.outerSize() + 1, outer_.begin(), outer_.end()) &&
+                      std::equal(inner, inner + A.nonZeros(), inner_.begin(), inner_.end());
+    if (!same) {
+      rows_ = A.rows();
+      nnz_ = A.nonZeros();
+      outer_.assign(outer, outer + A.outerSize() + 1);
+      inner_.assign(inner, inner + A.nonZeros());
+    }
+    return same;
+  }
+
+ private:
+  Eigen::Index rows_ = -1, nnz_ = -1;
+  std::vector<int> outer_, inner_;
+};
+
+class LdltSolver final : public LinearSolver {
+ public:
+  bool factorize(const SpMat& A) override {
+    if (!cache_.same(A)) ldlt_.analyzePattern(A);
+    ldlt_.factorize(A);
+    return ldlt_.info() == Eigen::Success;
+  }
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    x = ldlt_.solve(b);
+    return ldlt_.info() == Eigen::Success && x.allFinite();
+  }
+
+ private:
+  Eigen::SimplicialLDLT<SpMat, Eigen::Lower> ldlt_;
+  PatternCache cache_;
+};
+
+class CholmodSolver final : public LinearSolver {
+ public:
+  bool factorize(const SpMat& A) override {
+    note_.clear();
+    if (!cache_.same(A)) llt_.analyzePattern(A);
+    llt_.factorize(A);
+    use_fallback_ = llt_.info() != Eigen::Success;
+    if (!use_fallback_) return true;
+    // Not positive definite (compression near buckling, or far from equilibrium): LDL^T
+    // handles symmetric indefinite matrices with non-zero pivots.
+    note_ = "cholmod: matrix not positive definite, used LDL^T";
+    return fallback_.factorize(A);
+  }
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    if (use_fallback_) return fallback_.solve(b, x);
+    x = llt_.solve(b);
+    return llt_.info() == Eigen::Success && x.allFinite();
+  }
+  [[nodiscard]] std::string last_note() const override { return note_; }
+
+ private:
+  Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> llt_;
+  LdltSolver fallback_;
+  PatternCache cache_;
+  bool use_fallback_ = false;
+  std::string note_;
+};
+
+class PcgSolver final : public LinearSolver {
+ public:
+  explicit PcgSolver(const PcgParams& p) : params_(p) {}
+  bool factorize(const SpMat& A) override {
+    cg_.setTolerance(params_.tolerance);
+    cg_.setMaxIterations(params_.max_iterations);
+    cg_.compute(A);
+    return cg_.info() == Eigen::Success;
+  }
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    x = cg_.solve(b);
+    note_ = "pcg: " + std::to_string(cg_.iterations()) + " iterations, error " +
+            std::to_string(cg_.error());
+    return cg_.info() == Eigen::Success && x.allFinite();
+  }
+  [[nodiscard]] std::string last_note() const override { return note_; }
+
+ private:
+  PcgParams params_;
+  Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg_;
+  std::string note_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const PcgParams& pcg) {
+  switch (kind) {
+    case LinearSolverKind::Cholmod: return std::make_unique<CholmodSolver>();
+    case LinearSolverKind::Ldlt: return std::make_unique<LdltSolver>();
+    case LinearSolverKind::Pcg: return std::make_unique<PcgSolver>(pcg);
+  }
+  throw InvalidArgument("unknown linear solver kind");
+}
+
+}  // namespace sutura::engine

@@ -1,0 +1,90 @@
+#include "sutura/engine/sim/loads.hpp"
+
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+namespace {
+
+Eigen::Matrix3d skew(const Vec3& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+double rest_area(const ElementRest& e) { return 0.5 * (e.X[1] - e.X[0]).cross(e.X[2] - e.X[0]).norm(); }
+
+}  // namespace
+
+bool Loads::empty() const {
+  return nodal.empty() && pressures.empty() && body_force_per_area.isZero();
+}
+
+bool Loads::has_moments() const {
+  for (const auto& l : nodal)
+    if (!l.moment.isZero()) return true;
+  return false;
+}
+
+std::vector<NodalLoad> lump_line_load(const std::vector<Vec3>& positions,
+                                      const std::vector<VertexId>& chain,
+                                      const Vec3& force_per_length) {
+  if (chain.size() < 2) throw InvalidArgument("a line load needs a chain of at least 2 vertices");
+  std::vector<NodalLoad> out(chain.size());
+  for (std::size_t i = 0; i < chain.size(); ++i) out[i].node = chain[i].index();
+  for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+    const double len = (positions[chain[i + 1].index()] - positions[chain[i].index()]).norm();
+    out[i].force += 0.5 * len * force_per_length;
+    out[i + 1].force += 0.5 * len * force_per_length;
+  }
+  return out;
+}
+
+void external_forces(const ShellProblem& p, const ShellState& s, const Loads& loads, double lambda,
+                     int d, Eigen::VectorXd& f, Triplets* K) {
+  f.setZero(static_cast<Eigen::Index>(p.num_nodes * d));
+  for (const auto& l : loads.nodal) {
+    if (l.node >= p.num_nodes)
+      throw InvalidArgument("load on node " + std::to_string(l.node) + " out of range");
+    f.segment<3>(l.node * d) += lambda * l.force;
+    if (!l.moment.isZero()) {
+      if (d < 6) throw InvalidArgument("moments need a shell model with rotational degrees of freedom");
+      f.segment<3>(l.node * d + 3) += lambda * l.moment;
+    }
+  }
+  const auto& faces = *p.faces;
+  if (!loads.body_force_per_area.isZero()) {
+    for (std::size_t e = 0; e < faces.size(); ++e) {
+      const Vec3 share = lambda * rest_area(p.rest->elements[e]) / 3.0 * loads.body_force_per_area;
+      for (int k = 0; k < 3; ++k) f.segment<3>(faces[e][k] * d) += share;
+    }
+  }
+  for (const auto& pl : loads.pressures) {
+    const std::size_t count = pl.faces.empty() ? faces.size() : pl.faces.size();
+    const double c = lambda * pl.pressure / 6.0;  // p*A*n/3 = p/6 * (e1 x e2) per corner
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t e = pl.faces.empty() ? i : pl.faces[i].index();
+      const auto& fc = faces[e];
+      const Vec3 e1 = s.x[fc[1]] - s.x[fc[0]], e2 = s.x[fc[2]] - s.x[fc[0]];
+      const Vec3 share = c * e1.cross(e2);
+      for (int k = 0; k < 3; ++k) f.segment<3>(fc[k] * d) += share;
+      if (K == nullptr) continue;
+      // d(share)/d(x_corner): corner 0: c([e2]x - [e1]x), corner 1: -c[e2]x, corner 2: c[e1]x.
+      // The tangent gets MINUS this (follower load stiffness), symmetrised: 0.5 (A + A^T) per
+      // block pair, i.e. each non-symmetric block contributes half to (a,b) and half to (b,a).
+      const Eigen::Matrix3d dS[3] = {c * (skew(e2) - skew(e1)), -c * skew(e2), c * skew(e1)};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const Eigen::Matrix3d& blk = dS[b];  // d f_a / d x_b (same share on every corner a)
+          for (int i2 = 0; i2 < 3; ++i2)
+            for (int j2 = 0; j2 < 3; ++j2) {
+              const double v = -0.5 * blk(i2, j2);
+              K->emplace_back(fc[a] * d + i2, fc[b] * d + j2, v);
+              K->emplace_back(fc[b] * d + j2, fc[a] * d + i2, v);
+            }
+        }
+    }
+  }
+}
+
+}  // namespace sutura::engine

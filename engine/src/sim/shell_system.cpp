@@ -1,0 +1,85 @@
+#include "sutura/engine/sim/shell_system.hpp"
+
+#include <algorithm>
+
+namespace sutura::engine {
+
+DofMap::DofMap(const ShellSystem& sys) {
+  const int d = sys.dofs_per_node();
+  full_to_free.assign(sys.num_dofs(), -1);
+  for (std::size_t n = 0; n < sys.problem.num_nodes; ++n)
+    for (int k = 0; k < d; ++k) {
+      if (sys.constraints.is_fixed(n, k)) continue;
+      full_to_free[n * d + k] = static_cast<int>(free_to_full.size());
+      free_to_full.push_back(static_cast<int>(n * d + k));
+    }
+}
+
+Eigen::VectorXd DofMap::restrict(const Eigen::VectorXd& full) const {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(free_to_full.size()));
+  for (std::size_t i = 0; i < free_to_full.size(); ++i) r[i] = full[free_to_full[i]];
+  return r;
+}
+
+Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& free) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(full_to_free.size()));
+  for (std::size_t i = 0; i < free_to_full.size(); ++i) f[free_to_full[i]] = free[i];
+  return f;
+}
+
+Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
+                    bool with_tangent) {
+  Evaluation ev;
+  Eigen::VectorXd g, f;
+  Triplets K;
+  if (with_tangent)
+    ev.internal_energy = sys.model->energy_gradient_hessian(sys.problem, s, g, K, true);
+  else
+    ev.internal_energy = sys.model->energy_gradient(sys.problem, s, g);
+  external_forces(sys.problem, s, sys.loads, lambda, sys.dofs_per_node(), f,
+                  with_tangent ? &K : nullptr);
+  if (!sys.fixed_loads.empty()) {
+    Eigen::VectorXd f_fixed;
+    external_forces(sys.problem, s, sys.fixed_loads, 1.0, sys.dofs_per_node(), f_fixed,
+                    with_tangent ? &K : nullptr);
+    f += f_fixed;
+  }
+  ev.residual = map.restrict(g - f);
+  ev.external_norm = map.restrict(f).norm();
+  if (with_tangent) {
+    // Drop rows/columns of fixed DOFs in place, renumbering to free indices.
+    std::size_t kept = 0;
+    for (const auto& t : K) {
+      const int r = map.full_to_free[t.row()], c = map.full_to_free[t.col()];
+      if (r >= 0 && c >= 0) K[kept++] = Eigen::Triplet<double>(r, c, t.value());
+    }
+    K.resize(kept);
+    const auto n = static_cast<Eigen::Index>(map.num_free());
+    ev.tangent.resize(n, n);
+    ev.tangent.setFromTriplets(K.begin(), K.end());
+  }
+  return ev;
+}
+
+Eigen::VectorXd lumped_mass(const ShellSystem& sys) {
+  const int d = sys.dofs_per_node();
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sys.num_dofs()));
+  const auto& faces = *sys.problem.faces;
+  for (std::size_t e = 0; e < faces.size(); ++e) {
+    const auto& X = sys.problem.rest->elements[e].X;
+    const ShellMaterial& mat = (*sys.problem.materials)[(*sys.problem.face_material)[e]];
+    const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    const double mt = mat.density * mat.thickness * area / 3.0;
+    // Rotary inertia of a plate slice (t^2/12), floored by an in-plane term (A/12) so the
+    // drilling rotation is not nearly massless; it only shapes the transient.
+    const double mr = mt * std::max(mat.thickness * mat.thickness / 12.0, area / 12.0);
+    for (int k = 0; k < 3; ++k) {
+      const auto n = static_cast<Eigen::Index>(faces[e][k]) * d;
+      for (int i = 0; i < 3; ++i) m[n + i] += mt;
+      for (int i = 3; i < d; ++i) m[n + i] += mr;
+    }
+  }
+  return m;
+}
+
+}  // namespace sutura::engine

@@ -1,0 +1,197 @@
+#include "sutura/engine/sim/static_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+namespace {
+
+void check(const StaticSolverParams& p) {
+  if (!std::isfinite(p.lambda_start) || !std::isfinite(p.lambda_end))
+    throw InvalidArgument("load factors must be finite");
+  if (p.load_steps < 1) throw InvalidArgument("load_steps must be at least 1");
+  if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) throw InvalidArgument("tolerance must be in (0, 1)");
+  if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
+  if (p.max_step_cuts < 0) throw InvalidArgument("max_step_cuts must be >= 0");
+  if (!(p.energy_blowup > 1.0)) throw InvalidArgument("energy_blowup must be > 1");
+}
+
+double characteristic_length(const ShellState& s) {
+  if (s.x.empty()) return 1.0;
+  Eigen::AlignedBox3d box;
+  for (const auto& p : s.x) box.extend(p);
+  return std::max(box.diagonal().norm(), 1e-12);
+}
+
+// Newton iterations at a fixed load factor. Returns an empty string on convergence, else why
+// it failed (the caller restores the state).
+//
+// Convergence: |r| <= tol * max(|f_ext|, |r_0|), or the energy norm of the Newton increment
+// |du . r| <= tol^2 * |du_0 . r_0| (the usual FE energy criterion). The second is needed
+// because coordinate round-off puts a floor of about 1e-14 E t L under the residual, which a
+// purely relative residual test at small loads cannot pass.
+//
+// Line search (Crisfield): on the slope s(a) = du . r(u + a du), which is negative at a = 0.
+// The full step is accepted when |s(1)| <= 0.8 |s(0)|; else the step length is refined by
+// secant steps on s. A residual-norm merit would reject the first Newton step of a thin shell
+// (the linear predictor stretches the membrane, so |r| jumps up although the step is good).
+std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state, double lambda,
+                   const StaticSolverParams& params, LinearSolver& solver, double energy_scale,
+                   StaticResult& result) {
+  const int d = sys.dofs_per_node();
+  Evaluation ev = evaluate(sys, map, state, lambda, true);
+  const double ref = std::max({ev.external_norm, ev.residual.norm(), 1e-300});
+  double step_length = 1.0;
+  double first_work = -1.0;
+  for (int it = 0;; ++it) {
+    const double rnorm = ev.residual.norm();
+    if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
+      return "the state became non-finite (NaN/inf)";
+    if (ev.internal_energy > params.energy_blowup * energy_scale)
+      return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
+    result.history.push_back({lambda, it, rnorm, ev.internal_energy, step_length});
+    result.residual = rnorm;
+    result.energy = ev.internal_energy;
+    if (rnorm <= params.tolerance * ref) return {};
+    if (it == params.max_iterations) {
+      std::ostringstream m;
+      m << "no convergence in " << params.max_iterations << " Newton iterations (residual "
+        << rnorm << ", needed " << params.tolerance * ref << ")";
+      return m.str();
+    }
+    ++result.iterations;
+    if (!solver.factorize(ev.tangent))
+      return "the tangent stiffness is singular (is the structure constrained?)";
+    Eigen::VectorXd du;
+    if (!solver.solve(-ev.residual, du)) return "the linear solve failed: " + solver.last_note();
+    const double s0 = du.dot(ev.residual);
+    if (first_work < 0.0) first_work = std::abs(s0);
+    const bool energy_converged =
+        std::abs(s0) <= params.tolerance * params.tolerance * first_work && it > 0;
+    const Eigen::VectorXd du_full = map.expand(du);
+
+    const auto trial_at = [&](double a, ShellState& trial) {
+      trial = state;
+      apply_increment(trial, a * du_full, d);
+      return evaluate(sys, map, trial, lambda, true);
+    };
+    ShellState trial;
+    Evaluation ev_trial = trial_at(1.0, trial);
+    step_length = 1.0;
+    if (params.line_search && !energy_converged && s0 < 0.0) {
+      double a = 1.0, s_a = du.dot(ev_trial.residual);
+      double best_a = a, best_s = std::isfinite(s_a) ? std::abs(s_a) : HUGE_VAL;
+      ShellState best_state = trial;
+      Evaluation best_ev = ev_trial;
+      for (int search = 0; search < 5 && !(std::abs(s_a) <= 0.8 * std::abs(s0)); ++search) {
+        // Secant on s between 0 and a; a non-finite trial halves the step instead.
+        double next = std::isfinite(s_a) && s_a != s0 ? a * s0 / (s0 - s_a) : 0.5 * a;
+        if (!(next > 0.0)) next = 0.5 * a;
+        a = std::clamp(next, 0.1 * a, 2.0 * a);
+        ev_trial = trial_at(a, trial);
+        s_a = du.dot(ev_trial.residual);
+        if (std::isfinite(s_a) && std::abs(s_a) < best_s) {
+          best_a = a, best_s = std::abs(s_a);
+          best_state = trial;
+          best_ev = ev_trial;
+        }
+      }
+      if (!(std::abs(s_a) <= 0.8 * std::abs(s0))) {
+        a = best_a;
+        trial = std::move(best_state);
+        ev_trial = std::move(best_ev);
+      }
+      step_length = a;
+    }
+    state = std::move(trial);
+    ev = std::move(ev_trial);
+    if (energy_converged) {
+      result.history.push_back({lambda, it + 1, ev.residual.norm(), ev.internal_energy, 1.0});
+      result.residual = ev.residual.norm();
+      result.energy = ev.internal_energy;
+      return {};
+    }
+  }
+}
+
+StaticResult linear_solve(const ShellSystem& sys, const DofMap& map, ShellState& state,
+                          const StaticSolverParams& params, LinearSolver& solver) {
+  StaticResult result;
+  const Evaluation ev = evaluate(sys, map, state, params.lambda_end, true);
+  result.history.push_back({params.lambda_end, 0, ev.residual.norm(), ev.internal_energy, 1.0});
+  Eigen::VectorXd du;
+  if (!solver.factorize(ev.tangent)) {
+    result.message = "linear solve: the stiffness matrix is singular (is the structure constrained?)";
+    return result;
+  }
+  if (!solver.solve(-ev.residual, du) || !du.allFinite()) {
+    result.message = "linear solve failed: " + solver.last_note();
+    return result;
+  }
+  apply_increment(state, map.expand(du), sys.dofs_per_node());
+  const Evaluation after = evaluate(sys, map, state, params.lambda_end, false);
+  result.converged = true;
+  result.iterations = 1;
+  result.lambda_reached = params.lambda_end;
+  result.residual = after.residual.norm();  // non-zero: the nonlinear residual of the linear answer
+  result.energy = after.internal_energy;
+  result.history.push_back({params.lambda_end, 1, result.residual, result.energy, 1.0});
+  return result;
+}
+
+}  // namespace
+
+StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params) {
+  check(params);
+  const DofMap map(sys);
+  auto solver = make_linear_solver(params.linear_solver, params.pcg);
+  if (params.linear) return linear_solve(sys, map, state, params, *solver);
+  StaticResult result;
+  ShellState good = state;
+  // t runs from 0 to 1; the load factor is lambda_start + t * (lambda_end - lambda_start).
+  const auto lambda_at = [&](double t) {
+    return params.lambda_start + t * (params.lambda_end - params.lambda_start);
+  };
+  double t_done = 0.0;
+  double dt = 1.0 / params.load_steps;
+  int cuts = 0;
+  // Energies are compared against the largest converged energy, floored by the work scale of
+  // the full load over the structure's size so the first step has a meaningful reference.
+  Eigen::VectorXd f;
+  external_forces(sys.problem, state, sys.loads,
+                  std::max(std::abs(params.lambda_start), std::abs(params.lambda_end)),
+                  sys.dofs_per_node(), f, nullptr);
+  double energy_scale = std::max(f.norm() * characteristic_length(state), 1e-30);
+  while (t_done < 1.0 - 1e-12) {
+    const double t = std::min(1.0, t_done + dt);
+    const double lambda = lambda_at(t);
+    const std::string why =
+        newton(sys, map, state, lambda, params, *solver, energy_scale, result);
+    if (why.empty()) {
+      t_done = t;
+      good = state;
+      energy_scale = std::max(energy_scale, result.energy);
+      continue;
+    }
+    state = good;  // roll back to the last converged load step
+    if (cuts == params.max_step_cuts) {
+      std::ostringstream m;
+      m << "static solve failed at load factor " << lambda << ": " << why
+        << "; rolled back to the last converged load factor " << lambda_at(t_done);
+      result.message = m.str();
+      result.lambda_reached = lambda_at(t_done);
+      return result;
+    }
+    ++cuts;
+    dt *= 0.5;
+  }
+  result.converged = true;
+  result.lambda_reached = params.lambda_end;
+  return result;
+}
+
+}  // namespace sutura::engine

@@ -1,0 +1,156 @@
+// Shell simulator benchmarks (issue 3): time to solution of the Sze 3.1 cantilever, one Newton
+// iteration (assembly + factorisation + solve) at 1k-80k elements with memory, one implicit
+// dynamics step at 5k elements, and the linear solvers compared on the same system.
+// Run: build/tests/bench/bench_shell   (record the table in docs/performance.md)
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "sutura/engine/generators.hpp"
+#include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/selection.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+using namespace sutura::engine;
+
+namespace {
+
+double rss_mb() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * 4096.0 / (1024.0 * 1024.0);
+}
+
+// A vessel-like tube (radius 4 mm, wall 1 mm, E 1 MPa) clamped at z = 0, pulled sideways at
+// the far end, with about `elements` faces.
+struct TubeCase {
+  SurfaceMesh mesh;
+  std::vector<FaceIndices> faces;
+  RestState rest;
+  std::vector<ShellMaterial> materials{ShellMaterial{}};
+  std::vector<int> face_material;
+  std::unique_ptr<ShellModel> model;
+  ShellSystem sys;
+  ShellState state;
+
+  TubeCase(int elements, std::unique_ptr<ShellModel> m) : model(std::move(m)) {
+    const int around = std::max(8, static_cast<int>(std::sqrt(elements / 2.0)));
+    const int along = std::max(1, elements / (2 * around));
+    mesh = make_tube({4.0, 40.0, around, along});
+    faces = mesh.faces();
+    state = state_from_mesh(mesh);
+    rest = rest_from_state(mesh, state);
+    face_material.assign(faces.size(), 0);
+    sys.model = model.get();
+    sys.problem = ShellProblem{&faces, &rest, &materials, &face_material, mesh.num_vertices()};
+    const auto root = select_vertices(mesh.positions(), SelectPlaneBand{Vec3(0, 0, 0), Vec3(0, 0, 1), 1e-9});
+    sys.constraints.fix(root, kAllDofs, mesh.num_vertices());
+    const auto tip = select_vertices(mesh.positions(), SelectPlaneBand{Vec3(0, 0, 40), Vec3(0, 0, 1), 1e-9});
+    for (auto v : tip) sys.loads.nodal.push_back({v.index(), Vec3(0.01 / tip.size(), 0, 0), Vec3::Zero()});
+  }
+};
+
+void BM_NewtonIteration(benchmark::State& st) {
+  TubeCase c(static_cast<int>(st.range(0)), make_corotational_shell());
+  const DofMap map(c.sys);
+  auto solver = make_linear_solver(static_cast<LinearSolverKind>(st.range(1)));
+  Eigen::VectorXd du;
+  for (auto _ : st) {
+    Evaluation ev = evaluate(c.sys, map, c.state, 1.0, true);
+    solver->factorize(ev.tangent);
+    solver->solve(-ev.residual, du);
+    benchmark::DoNotOptimize(du.data());
+  }
+  Evaluation ev = evaluate(c.sys, map, c.state, 1.0, true);
+  st.counters["elements"] = static_cast<double>(c.faces.size());
+  st.counters["dofs"] = static_cast<double>(map.num_free());
+  st.counters["nnz"] = static_cast<double>(ev.tangent.nonZeros());
+  st.counters["rss_MB"] = rss_mb();
+  st.SetLabel(to_string(static_cast<LinearSolverKind>(st.range(1))));
+}
+
+void BM_Assembly(benchmark::State& st) {
+  TubeCase c(static_cast<int>(st.range(0)), make_corotational_shell());
+  const DofMap map(c.sys);
+  for (auto _ : st) {
+    Evaluation ev = evaluate(c.sys, map, c.state, 1.0, true);
+    benchmark::DoNotOptimize(ev.tangent.valuePtr());
+  }
+  st.counters["elements"] = static_cast<double>(c.faces.size());
+}
+
+void BM_DynamicsStep(benchmark::State& st) {
+  TubeCase c(5000, make_corotational_shell());
+  DynamicsParams p;
+  p.dt = 1e-3;
+  p.steps = 1;
+  DynamicsState s{c.state, {}};
+  int newton = 0;
+  for (auto _ : st) {
+    const DynamicsResult r = simulate_dynamics(c.sys, s, p);
+    newton += r.newton_iterations;
+  }
+  st.counters["elements"] = static_cast<double>(c.faces.size());
+  st.counters["newton_per_step"] = benchmark::Counter(newton, benchmark::Counter::kAvgIterations);
+}
+
+// Sze, Liu & Lo 2004 case 3.1 from the unloaded strip to equilibrium at P = 4.
+void BM_SzeCantilever(benchmark::State& st) {
+  const int nl = static_cast<int>(st.range(0)), nw = static_cast<int>(st.range(1));
+  const int steps = static_cast<int>(st.range(2));
+  double ux = 0.0, uz = 0.0;
+  int iterations = 0;
+  for (auto _ : st) {
+    SurfaceMesh mesh = make_strip({10.0, 1.0, nl, nw});
+    std::vector<FaceIndices> faces = mesh.faces();
+    ShellState state = state_from_mesh(mesh);
+    RestState rest = rest_from_state(mesh, state);
+    ShellMaterial mat;
+    mat.youngs_modulus = 1.2e6;
+    mat.poisson_ratio = 0.0;
+    mat.thickness = 0.1;
+    std::vector<ShellMaterial> mats{mat};
+    std::vector<int> fm(faces.size(), 0);
+    auto model = make_corotational_shell();
+    ShellSystem sys;
+    sys.model = model.get();
+    sys.problem = ShellProblem{&faces, &rest, &mats, &fm, mesh.num_vertices()};
+    sys.constraints.fix(select_vertices(mesh.positions(), SelectPlaneBand{Vec3(0, 0, 0), Vec3(1, 0, 0), 1e-9}),
+                        kAllDofs, mesh.num_vertices());
+    const auto tip = select_vertices(mesh.positions(), SelectPlaneBand{Vec3(10, 0, 0), Vec3(1, 0, 0), 1e-9});
+    // Consistent line load P/b along the tip edge: end nodes get half a segment's share.
+    const double seg = 1.0 / nw;
+    for (std::size_t i = 0; i < tip.size(); ++i) {
+      const double w = (i == 0 || i + 1 == tip.size()) ? 0.5 * seg : seg;
+      sys.loads.nodal.push_back({tip[i].index(), Vec3(0, 0, 4.0 * w), Vec3::Zero()});
+    }
+    StaticSolverParams p;
+    p.load_steps = steps;
+    p.tolerance = 1e-6;
+    const StaticResult r = solve_static(sys, state, p);
+    const auto v = select_vertices(mesh.positions(), SelectNearest{{Vec3(10, 0, 0)}})[0];
+    ux = state.x[v.index()].x() - 10.0;
+    uz = state.x[v.index()].z();
+    iterations = r.iterations;
+  }
+  st.counters["minus_u"] = -ux;
+  st.counters["w"] = uz;
+  st.counters["err_u_pct"] = 100.0 * std::abs(-ux - 3.286) / 3.286;
+  st.counters["err_w_pct"] = 100.0 * std::abs(uz - 6.698) / 6.698;
+  st.counters["newton"] = iterations;
+}
+
+}  // namespace
+
+BENCHMARK(BM_SzeCantilever)->Args({16, 1, 4})->Args({32, 2, 4})->Args({64, 2, 4})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Assembly)->Arg(1000)->Arg(5000)->Arg(20000)->Arg(80000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NewtonIteration)
+    ->Args({1000, 0})->Args({5000, 0})->Args({20000, 0})->Args({80000, 0})
+    ->Args({20000, 1})->Args({20000, 2})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DynamicsStep)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

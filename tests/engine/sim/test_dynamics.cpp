@@ -1,0 +1,78 @@
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "sim_fixture.hpp"
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+using namespace sutura::engine;
+using sutura::engine::testing::Cantilever;
+
+TEST(Dynamics, LumpedMassSumsToTotalMass) {
+  Cantilever c(make_corotational_shell(), 1.0);
+  const Eigen::VectorXd m = lumped_mass(c.sys);
+  double mx = 0.0;
+  for (std::size_t n = 0; n < c.mesh.num_vertices(); ++n) mx += m[n * 6];
+  const auto& mat = c.materials[0];
+  EXPECT_NEAR(mx, mat.density * mat.thickness * 10.0 * 1.0, 1e-12 * mx);
+  for (int i = 0; i < m.size(); ++i) EXPECT_GT(m[i], 0.0);
+}
+
+TEST(Dynamics, DampedMotionSettlesToStaticEquilibrium) {
+  Cantilever dyn(make_corotational_shell(), 0.05, 10, 1), stat(make_corotational_shell(), 0.05, 10, 1);
+  StaticSolverParams sp;
+  ASSERT_TRUE(solve_static(stat.sys, stat.state, sp).converged);
+  DynamicsParams p;
+  p.dt = 2e-3;
+  p.steps = 300;
+  p.mass_damping = 200.0;  // strongly damped: settles within the run
+  DynamicsState s{dyn.state, {}};
+  const DynamicsResult r = simulate_dynamics(dyn.sys, s, p);
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_EQ(r.steps_done, 300);
+  dyn.state = s.shell;
+  const double w_static = stat.tip_displacement().z();
+  EXPECT_NEAR(dyn.tip_displacement().z(), w_static, 0.01 * std::abs(w_static));
+  EXPECT_LT(r.kinetic_energy, 1e-6 * r.strain_energy);
+}
+
+TEST(Dynamics, HookCanStopTheRun) {
+  Cantilever c(make_corotational_shell(), 0.05, 6, 1);
+  DynamicsParams p;
+  p.steps = 50;
+  DynamicsState s{c.state, {}};
+  int calls = 0;
+  const DynamicsResult r = simulate_dynamics(c.sys, s, p, [&](int step) {
+    ++calls;
+    return step < 5;
+  });
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.steps_done, 5);
+  EXPECT_EQ(calls, 6);
+}
+
+TEST(Dynamics, NonFiniteStepIsRolledBack) {
+  Cantilever c(make_corotational_shell(), 0.05, 6, 1);
+  c.sys.loads.nodal[0].force.z() = std::numeric_limits<double>::infinity();
+  DynamicsParams p;
+  p.steps = 3;
+  DynamicsState s{c.state, {}};
+  const DynamicsResult r = simulate_dynamics(c.sys, s, p);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.steps_done, 0);
+  EXPECT_NE(r.message.find("rolled back"), std::string::npos) << r.message;
+  for (std::size_t i = 0; i < c.state.x.size(); ++i) EXPECT_EQ(s.shell.x[i], c.state.x[i]);
+}
+
+TEST(Dynamics, RejectsBadParameters) {
+  Cantilever c(make_corotational_shell(), 0.05, 4, 1);
+  DynamicsState s{c.state, {}};
+  DynamicsParams p;
+  p.dt = 0.0;
+  EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
+  p = {};
+  p.mass_damping = -1.0;
+  EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
+}

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/sim/loads.hpp"
+
+using namespace sutura::engine;
+
+namespace {
+
+// A small curved patch: 3x3 grid bent into a saddle, as flat arrays plus per-element rest.
+struct Patch {
+  std::vector<FaceIndices> faces;
+  RestState rest;
+  std::vector<ShellMaterial> materials{ShellMaterial{}};
+  std::vector<int> face_material;
+  ShellState state;
+  ShellProblem problem() const {
+    return ShellProblem{&faces, &rest, &materials, &face_material, state.x.size()};
+  }
+};
+
+Patch make_patch() {
+  Patch p;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double x = i, y = j;
+      p.state.x.emplace_back(x, y, 0.1 * (x - 1) * (x - 1) - 0.15 * (y - 1) * (y - 1));
+      p.state.D.push_back(Quat::Identity());
+    }
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = j * 3 + i, b = a + 1, c = a + 4, d = a + 3;
+      p.faces.push_back({a, b, c});
+      p.faces.push_back({a, c, d});
+    }
+  for (const auto& f : p.faces) {
+    ElementRest e;
+    for (int k = 0; k < 3; ++k) {
+      e.X[k] = p.state.x[f[k]];
+      e.Q[k] = Quat::Identity();
+    }
+    p.rest.elements.push_back(e);
+  }
+  p.face_material.assign(p.faces.size(), 0);
+  return p;
+}
+
+}  // namespace
+
+TEST(Loads, NodalForcesMomentsAndScaling) {
+  Patch p = make_patch();
+  Loads l;
+  l.nodal.push_back({4, Vec3(1, 2, 3), Vec3(0, 0, 5)});
+  Eigen::VectorXd f;
+  external_forces(p.problem(), p.state, l, 0.5, 6, f, nullptr);
+  EXPECT_EQ(f.size(), 9 * 6);
+  EXPECT_DOUBLE_EQ(f[4 * 6 + 2], 1.5);
+  EXPECT_DOUBLE_EQ(f[4 * 6 + 5], 2.5);
+  EXPECT_DOUBLE_EQ(f.sum(), 0.5 * (1 + 2 + 3 + 5));
+  EXPECT_THROW(external_forces(p.problem(), p.state, l, 1.0, 3, f, nullptr), InvalidArgument);
+}
+
+TEST(Loads, BodyForceTotalsRestArea) {
+  Patch p = make_patch();
+  double area = 0.0;
+  for (const auto& e : p.rest.elements) area += 0.5 * (e.X[1] - e.X[0]).cross(e.X[2] - e.X[0]).norm();
+  Loads l;
+  l.body_force_per_area = Vec3(0, 0, -90);
+  Eigen::VectorXd f;
+  external_forces(p.problem(), p.state, l, 1.0, 3, f, nullptr);
+  double fz = 0.0;
+  for (int n = 0; n < 9; ++n) fz += f[n * 3 + 2];
+  EXPECT_NEAR(fz, -90.0 * area, 1e-10 * 90.0 * area);
+}
+
+TEST(Loads, LineLoadLumpsTotalByLength) {
+  std::vector<Vec3> pos = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(3, 0, 0)};
+  auto nodal = lump_line_load(pos, {VertexId(0), VertexId(1), VertexId(2)}, Vec3(0, 0, 2));
+  ASSERT_EQ(nodal.size(), 3u);
+  EXPECT_DOUBLE_EQ(nodal[0].force.z(), 1.0);  // half of segment 1 (length 1)
+  EXPECT_DOUBLE_EQ(nodal[1].force.z(), 3.0);  // halves of both segments
+  EXPECT_DOUBLE_EQ(nodal[2].force.z(), 2.0);
+  EXPECT_THROW(lump_line_load(pos, {VertexId(0)}, Vec3(0, 0, 1)), InvalidArgument);
+}
+
+TEST(Loads, PressureResultantAndLoadStiffnessMatchFiniteDifferences) {
+  Patch p = make_patch();
+  Loads l;
+  l.pressures.push_back({{}, 0.7});
+  Eigen::VectorXd f;
+  Triplets K;
+  external_forces(p.problem(), p.state, l, 1.0, 3, f, &K);
+  // Resultant: p * sum of area vectors.
+  Vec3 total = Vec3::Zero(), expect = Vec3::Zero();
+  for (int n = 0; n < 9; ++n) total += f.segment<3>(n * 3);
+  for (const auto& fc : p.faces)
+    expect += 0.5 * 0.7 * (p.state.x[fc[1]] - p.state.x[fc[0]]).cross(p.state.x[fc[2]] - p.state.x[fc[0]]);
+  EXPECT_LT((total - expect).norm(), 1e-12);
+
+  Eigen::SparseMatrix<double> Ks(27, 27);
+  Ks.setFromTriplets(K.begin(), K.end());
+  Eigen::MatrixXd J(27, 27);
+  const double h = 1e-6;
+  for (int c = 0; c < 27; ++c) {
+    ShellState sp = p.state, sm = p.state;
+    sp.x[c / 3][c % 3] += h;
+    sm.x[c / 3][c % 3] -= h;
+    Eigen::VectorXd fp, fm;
+    external_forces(p.problem(), sp, l, 1.0, 3, fp, nullptr);
+    external_forces(p.problem(), sm, l, 1.0, 3, fm, nullptr);
+    J.col(c) = (fp - fm) / (2 * h);
+  }
+  const Eigen::MatrixXd expected = -0.5 * (J + J.transpose());
+  EXPECT_LT((Eigen::MatrixXd(Ks) - expected).norm(), 1e-7 * expected.norm());
+}

@@ -1,0 +1,116 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "sim_fixture.hpp"
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+using namespace sutura::engine;
+using sutura::engine::testing::Cantilever;
+
+TEST(StaticSolver, LinearAnalysisMatchesBeamTheory) {
+  // P L^3 / (3 E I) with I = b t^3 / 12 = 1e-4/1.2: 1e-3 * 1000 / (3 * 100) = 3.333e-3.
+  Cantilever c(make_corotational_shell(), 1e-3);
+  StaticSolverParams p;
+  p.linear = true;
+  const StaticResult r = solve_static(c.sys, c.state, p);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_NEAR(c.tip_displacement().z(), 1e-3 * 1000.0 / 300.0, 0.01 * 1e-3 * 1000.0 / 300.0);
+}
+
+TEST(StaticSolver, NewtonConvergesQuadraticallyWithLoadSteps) {
+  Cantilever c(make_corotational_shell(), 4.0);  // Sze case 3.1 load
+  StaticSolverParams p;
+  p.load_steps = 4;
+  const StaticResult r = solve_static(c.sys, c.state, p);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_DOUBLE_EQ(r.lambda_reached, 1.0);
+  // Within the last load step: the residual falls faster than linearly near the solution
+  // (r_{k+1} <= r_k^1.5 once r_k is small relative to the first residual of the step).
+  std::vector<double> last;
+  for (const auto& h : r.history)
+    if (h.lambda == 1.0) last.push_back(h.residual);
+  ASSERT_GE(last.size(), 3u);
+  const double r0 = last.front();
+  int checked = 0;
+  for (std::size_t k = 1; k + 1 < last.size(); ++k) {
+    const double a = last[k] / r0, b = last[k + 1] / r0;
+    if (a < 1e-2 && b > 1e-14) {
+      EXPECT_LT(b, std::pow(a, 1.5)) << "iteration " << k;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 1);
+  // Large deflection: the tip moves back (u < 0) and up well beyond the linear regime.
+  EXPECT_LT(c.tip_displacement().x(), -2.0);
+  EXPECT_GT(c.tip_displacement().z(), 5.0);
+}
+
+TEST(StaticSolver, ContinuesFromAnIntermediateLoadFactor) {
+  Cantilever a(make_corotational_shell(), 2.0), b(make_corotational_shell(), 2.0);
+  StaticSolverParams p;
+  p.load_steps = 2;
+  ASSERT_TRUE(solve_static(a.sys, a.state, p).converged);
+  StaticSolverParams half = p;
+  half.lambda_end = 0.5;
+  half.load_steps = 1;
+  ASSERT_TRUE(solve_static(b.sys, b.state, half).converged);
+  StaticSolverParams rest = p;
+  rest.lambda_start = 0.5;
+  rest.load_steps = 1;
+  ASSERT_TRUE(solve_static(b.sys, b.state, rest).converged);
+  EXPECT_LT((a.tip_displacement() - b.tip_displacement()).norm(), 1e-6 * a.tip_displacement().norm());
+}
+
+TEST(StaticSolver, UnconstrainedStructureFailsAndRollsBack) {
+  Cantilever c(make_corotational_shell(), 1.0);
+  c.sys.constraints.fixed.clear();
+  const ShellState before = c.state;
+  StaticSolverParams p;
+  p.max_step_cuts = 1;
+  const StaticResult r = solve_static(c.sys, c.state, p);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("rolled back"), std::string::npos) << r.message;
+  EXPECT_EQ(r.lambda_reached, 0.0);
+  for (std::size_t i = 0; i < before.x.size(); ++i) EXPECT_EQ(before.x[i], c.state.x[i]);
+}
+
+TEST(StaticSolver, NonFiniteLoadIsDetected) {
+  Cantilever c(make_corotational_shell(), 1.0);
+  c.sys.loads.nodal[0].force.z() = std::numeric_limits<double>::quiet_NaN();
+  const ShellState before = c.state;
+  StaticSolverParams p;
+  p.max_step_cuts = 0;
+  const StaticResult r = solve_static(c.sys, c.state, p);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.message.find("non-finite"), std::string::npos) << r.message;
+  for (std::size_t i = 0; i < before.x.size(); ++i) EXPECT_EQ(before.x[i], c.state.x[i]);
+}
+
+TEST(StaticSolver, LinearSolversAgree) {
+  double reference = 0.0;
+  for (auto kind : {LinearSolverKind::Cholmod, LinearSolverKind::Ldlt, LinearSolverKind::Pcg}) {
+    Cantilever c(make_corotational_shell(), 1.0);
+    StaticSolverParams p;
+    p.load_steps = 2;
+    p.linear_solver = kind;
+    const StaticResult r = solve_static(c.sys, c.state, p);
+    ASSERT_TRUE(r.converged) << to_string(kind) << ": " << r.message;
+    const double w = c.tip_displacement().z();
+    if (kind == LinearSolverKind::Cholmod) reference = w;
+    EXPECT_NEAR(w, reference, 1e-6 * std::abs(reference)) << to_string(kind);
+  }
+}
+
+TEST(StaticSolver, RejectsBadParameters) {
+  Cantilever c(make_corotational_shell(), 1.0);
+  StaticSolverParams p;
+  p.load_steps = 0;
+  EXPECT_THROW(solve_static(c.sys, c.state, p), InvalidArgument);
+  p = {};
+  p.tolerance = 0.0;
+  EXPECT_THROW(solve_static(c.sys, c.state, p), InvalidArgument);
+}
