@@ -19,6 +19,16 @@ std::string output_path_problem(const fs::path& relative) {
 }
 
 namespace {
+// Follows symlinks by hand: weakly_canonical() leaves a dangling link's name in place, which
+// would let a link to a not-yet-existing file outside the directory pass the check.
+fs::path resolve_links(fs::path p) {
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p)); ++hops) {
+    fs::path target = fs::read_symlink(p);
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return fs::weakly_canonical(p);
+}
+
 bool inside(const fs::path& root, const fs::path& p) {
   const fs::path rel = p.lexically_relative(root);
   return !rel.empty() && *rel.begin() != "..";
@@ -39,7 +49,7 @@ fs::path resolve_output_path(const fs::path& out_dir, const fs::path& relative) 
     const bool last = std::next(it) == normal.end();
     fs::path next = current / *it;
     if (fs::exists(fs::symlink_status(next))) {
-      const fs::path resolved = fs::weakly_canonical(next);
+      const fs::path resolved = resolve_links(next);
       if (!inside(root, resolved) && resolved != root)
         throw std::invalid_argument("'" + relative.string() +
                                     "': leads outside the output directory through a symbolic link");

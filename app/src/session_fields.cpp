@@ -142,6 +142,25 @@ std::optional<Fields> Fields::optional_object(const std::string& key) {
   return nested;
 }
 
+const json* Fields::raw(const std::string& key) {
+  if (!has(key)) return nullptr;
+  return &take(key);
+}
+
+std::vector<Vec3f> Fields::vec3_list(const std::string& key) {
+  const json* v = raw(key);
+  if (v == nullptr) fail(key, "missing (an array of [x, y, z] points is required)");
+  if (!v->is_array() || v->empty()) fail(key, "must be a non-empty array of [x, y, z] points");
+  std::vector<Vec3f> out;
+  for (const auto& e : *v) {
+    if (!e.is_array() || e.size() != 3 || !e[0].is_number() || !e[1].is_number() ||
+        !e[2].is_number())
+      fail(key, "must be a non-empty array of [x, y, z] points");
+    out.push_back({e[0].get<double>(), e[1].get<double>(), e[2].get<double>()});
+  }
+  return out;
+}
+
 void Fields::finish() const {
   for (const auto& [key, value] : object_.items()) {
     if (used_.count(key) == 0) fail(key, "unknown field");

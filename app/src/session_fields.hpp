@@ -36,6 +36,11 @@ class Fields {
   /// A nested object, checked with its own Fields (its errors say "camera.eye" etc.).
   std::optional<Fields> optional_object(const std::string& key);
 
+  /// The raw value of an optional field (marked as used), or nullptr.
+  const nlohmann::json* raw(const std::string& key);
+  /// An array of 3-vectors.
+  std::vector<Vec3f> vec3_list(const std::string& key);
+
   /// Throws if the line has a field no getter asked for.
   void finish() const;
 

@@ -14,6 +14,11 @@
 #include <vector>
 
 #include "sutura/engine/generators.hpp"
+#include "sutura/engine/shell/material.hpp"
+#include "sutura/engine/sim/constraints.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/selection.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
 
 namespace sutura::app {
 
@@ -45,7 +50,9 @@ using Vec3f = std::array<double, 3>;
 /// Creates an object from a procedural generator.
 struct GenerateOp {
   std::string object;
-  std::variant<engine::TubeParams, engine::StripParams, engine::PatchParams> params;
+  std::variant<engine::TubeParams, engine::StripParams, engine::PatchParams,
+               engine::CylinderPanelParams>
+      params;
   Vec3f translate = {0, 0, 0};  ///< mm, applied after generation
 };
 
@@ -93,7 +100,92 @@ struct ReportOp {
   std::filesystem::path file;
 };
 
-using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp>;
+/// Sets the material of every face of an object.
+struct MaterialOp {
+  std::string object;
+  engine::ShellMaterial material;
+};
+
+/// Which vertices an op acts on: one of the engine selections, or boundary loops
+/// (`boundary`: loop indices in SurfaceMesh::boundary_loops() order; empty = all loops).
+struct VertexSelection {
+  std::optional<engine::Selection> engine;
+  std::optional<std::vector<int>> boundary_loops;
+};
+
+/// Fixes degrees of freedom of the selected vertices (zero increment from then on).
+struct ConstrainOp {
+  std::string object;
+  VertexSelection where;
+  engine::DofMask dofs = engine::kAllDofs;
+};
+
+/// Nodal force and/or moment on the selected vertices: `total` is split equally between
+/// them, `per_node` applies it to each.
+struct ForceOp {
+  std::string object;
+  VertexSelection where;
+  engine::Vec3 force = engine::Vec3::Zero();   ///< N
+  engine::Vec3 moment = engine::Vec3::Zero();  ///< N*mm
+  bool per_node = false;
+};
+
+/// Force per length (N/mm) along the selected boundary vertices, which must form one
+/// contiguous run of a boundary loop.
+struct LineLoadOp {
+  std::string object;
+  VertexSelection where;
+  engine::Vec3 force_per_length = engine::Vec3::Zero();
+};
+
+/// Follower pressure (MPa) on every face of an object, along the face normals.
+struct PressureOp {
+  std::string object;
+  double pressure = 0.0;
+};
+
+/// Body force per rest area (N/mm^2), or an acceleration (mm/s^2) times density * thickness.
+struct BodyForceOp {
+  std::string object;
+  std::optional<engine::Vec3> per_area;
+  std::optional<engine::Vec3> acceleration;
+};
+
+/// Static equilibrium of the named objects (all when empty) under their loads.
+struct SolveOp {
+  std::vector<std::string> objects;
+  std::string model = "corotational";
+  double load_factor = 1.0;  ///< fraction of the pending loads to reach, (0, 1]
+  engine::StaticSolverParams params;
+};
+
+/// Implicit dynamics of the named objects (all when empty).
+struct SimulateOp {
+  std::vector<std::string> objects;
+  std::string model = "corotational";
+  engine::DynamicsParams params;
+};
+
+/// Records displacement and rotation of the vertex nearest to `point` (in the object's
+/// before-state) in the report under `name`.
+struct ProbeOp {
+  std::string object;
+  std::string name;
+  engine::Vec3 point = engine::Vec3::Zero();
+};
+
+/// Verification: fails the replay when a probed quantity is outside value ± tolerance.
+struct CheckOp {
+  std::string probe;
+  std::string quantity;  ///< ux uy uz rx ry rz, or "|u|"
+  double value = 0.0;
+  double rel_tol = 0.0;  ///< relative to |value|
+  double abs_tol = 0.0;
+};
+
+using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
+                        ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
+                        SimulateOp, ProbeOp, CheckOp>;
 
 /// One parsed action with where it came from.
 struct Action {

@@ -4,18 +4,38 @@
 #include <vector>
 
 #include "sutura/engine/mesh.hpp"
+#include "sutura/engine/shell/material.hpp"
+#include "sutura/engine/shell/rest_state.hpp"
+#include "sutura/engine/sim/constraints.hpp"
+#include "sutura/engine/sim/loads.hpp"
 
 namespace sutura::app {
+
+/// Simulation data of one object, kept apart from its topology: per-element rest state,
+/// materials, constraints, loads and the simulated state.
+struct SimulationData {
+  engine::ShellState state;      ///< x mirrors SceneObject::mesh positions after every run
+  engine::RestState rest;        ///< per element (stress-free reference)
+  std::vector<engine::ShellMaterial> materials{engine::ShellMaterial{}};
+  std::vector<int> face_material;  ///< per face, index into materials
+  engine::Constraints constraints;
+  engine::Loads applied_loads;   ///< loads already brought to equilibrium by a solve
+  engine::Loads pending_loads;   ///< loads defined since; ramped in by the next solve
+  double pending_factor = 0.0;   ///< fraction of pending_loads in equilibrium now, [0, 1)
+  Eigen::VectorXd velocity;      ///< per DOF of the last dynamics run; empty = at rest
+};
 
 struct SceneObject {
   std::string name;
   engine::SurfaceMesh mesh;    ///< current state
   engine::SurfaceMesh before;  ///< pre-operative state: the mesh as generated or loaded
+  SimulationData sim;
 };
 
 class Workspace {
  public:
-  /// Adds an object; throws std::invalid_argument if the name is taken.
+  /// Adds an object at rest (rest state congruent with the mesh, identity nodal triads,
+  /// default material); throws std::invalid_argument if the name is taken.
   SceneObject& add(std::string name, engine::SurfaceMesh mesh);
   /// nullptr when no object has that name.
   [[nodiscard]] SceneObject* find(const std::string& name);

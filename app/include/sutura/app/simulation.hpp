@@ -1,0 +1,43 @@
+#pragma once
+// Runs the engine's solvers on workspace objects. Several objects are simulated together by
+// merging them into one ShellSystem with disjoint node ranges (so contact between them can be
+// added as one more term), and the result is written back to each object.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sutura/app/workspace.hpp"
+#include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+namespace sutura::app {
+
+/// "corotational" (default, 6 DOF) | "discrete" (3 DOF); throws std::invalid_argument.
+std::unique_ptr<engine::ShellModel> make_model(const std::string& name);
+
+class MergedSystem {
+ public:
+  /// Merges `objects` (non-empty, distinct). Pending loads are scaled by lambda, applied
+  /// loads are constant. Throws std::invalid_argument for moments with a 3-DOF model.
+  MergedSystem(const std::vector<SceneObject*>& objects, const engine::ShellModel& model);
+
+  [[nodiscard]] const engine::ShellSystem& system() const { return system_; }
+  engine::ShellState& state() { return state_; }
+  Eigen::VectorXd& velocity() { return velocity_; }
+  /// Copies the merged state (and velocity) back into every object and its mesh positions.
+  void write_back();
+
+ private:
+  std::vector<SceneObject*> objects_;
+  std::vector<std::size_t> node_offset_;
+  std::vector<engine::FaceIndices> faces_;
+  engine::RestState rest_;
+  std::vector<engine::ShellMaterial> materials_;
+  std::vector<int> face_material_;
+  engine::ShellSystem system_;
+  engine::ShellState state_;
+  Eigen::VectorXd velocity_;
+};
+
+}  // namespace sutura::app

@@ -1,0 +1,110 @@
+#include "sutura/app/simulation.hpp"
+
+#include <stdexcept>
+
+namespace sutura::app {
+
+std::unique_ptr<engine::ShellModel> make_model(const std::string& name) {
+  if (name == "corotational") return engine::make_corotational_shell();
+  if (name == "discrete") return engine::make_discrete_shell();
+  throw std::invalid_argument("unknown shell model '" + name + "' (corotational, discrete)");
+}
+
+namespace {
+
+void append_loads(engine::Loads& into, const engine::Loads& from, std::size_t node_offset,
+                  std::size_t face_offset, std::size_t num_faces) {
+  for (auto l : from.nodal) {
+    l.node += node_offset;
+    into.nodal.push_back(l);
+  }
+  for (const auto& p : from.pressures) {
+    engine::PressureLoad q;
+    q.pressure = p.pressure;
+    if (p.faces.empty()) {
+      for (std::size_t f = 0; f < num_faces; ++f) q.faces.emplace_back(face_offset + f);
+    } else {
+      for (auto f : p.faces) q.faces.emplace_back(face_offset + f.index());
+    }
+    into.pressures.push_back(std::move(q));
+  }
+}
+
+}  // namespace
+
+MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
+                           const engine::ShellModel& model)
+    : objects_(objects) {
+  if (objects.empty()) throw std::invalid_argument("nothing to simulate: no objects");
+  std::size_t nodes = 0;
+  // Body forces act per object; they are folded into per-face pressure-free nodal form by the
+  // engine, so objects with different body forces cannot share one Loads::body_force: they
+  // are converted to nodal loads here on each object's rest areas.
+  for (SceneObject* o : objects) {
+    node_offset_.push_back(nodes);
+    const std::size_t face_offset = faces_.size();
+    const auto mat_offset = static_cast<int>(materials_.size());
+    for (const auto& f : o->mesh.faces())
+      faces_.push_back({f[0] + static_cast<int>(nodes), f[1] + static_cast<int>(nodes),
+                        f[2] + static_cast<int>(nodes)});
+    rest_.elements.insert(rest_.elements.end(), o->sim.rest.elements.begin(),
+                          o->sim.rest.elements.end());
+    materials_.insert(materials_.end(), o->sim.materials.begin(), o->sim.materials.end());
+    for (int m : o->sim.face_material) face_material_.push_back(m + mat_offset);
+    state_.x.insert(state_.x.end(), o->sim.state.x.begin(), o->sim.state.x.end());
+    state_.D.insert(state_.D.end(), o->sim.state.D.begin(), o->sim.state.D.end());
+
+    const std::size_t n = o->mesh.num_vertices();
+    system_.constraints.fixed.resize(nodes + n, 0);
+    for (std::size_t i = 0; i < o->sim.constraints.fixed.size() && i < n; ++i)
+      system_.constraints.fixed[nodes + i] = o->sim.constraints.fixed[i];
+
+    const auto body_to_nodal = [&](const engine::Loads& l, engine::Loads& into) {
+      if (l.body_force_per_area.isZero()) return;
+      for (std::size_t e = 0; e < o->mesh.num_faces(); ++e) {
+        const auto& X = o->sim.rest.elements[e].X;
+        const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+        for (int k = 0; k < 3; ++k)
+          into.nodal.push_back({nodes + o->mesh.faces()[e][k], area / 3.0 * l.body_force_per_area,
+                                engine::Vec3::Zero()});
+      }
+    };
+    append_loads(system_.fixed_loads, o->sim.applied_loads, nodes, face_offset, o->mesh.num_faces());
+    body_to_nodal(o->sim.applied_loads, system_.fixed_loads);
+    append_loads(system_.loads, o->sim.pending_loads, nodes, face_offset, o->mesh.num_faces());
+    body_to_nodal(o->sim.pending_loads, system_.loads);
+    nodes += n;
+  }
+  const int d = model.dofs_per_node();
+  if (d < 6 && (system_.loads.has_moments() || system_.fixed_loads.has_moments()))
+    throw std::invalid_argument("model '" + model.name() +
+                                "' has no rotational degrees of freedom: moments cannot be applied");
+  system_.model = &model;
+  system_.problem.faces = &faces_;
+  system_.problem.rest = &rest_;
+  system_.problem.materials = &materials_;
+  system_.problem.face_material = &face_material_;
+  system_.problem.num_nodes = nodes;
+
+  velocity_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nodes * d));
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& v = objects[i]->sim.velocity;
+    if (v.size() == static_cast<Eigen::Index>(objects[i]->mesh.num_vertices() * d))
+      velocity_.segment(static_cast<Eigen::Index>(node_offset_[i] * d), v.size()) = v;
+  }
+}
+
+void MergedSystem::write_back() {
+  const int d = system_.dofs_per_node();
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    SceneObject* o = objects_[i];
+    const std::size_t n = o->mesh.num_vertices(), off = node_offset_[i];
+    std::copy(state_.x.begin() + off, state_.x.begin() + off + n, o->sim.state.x.begin());
+    std::copy(state_.D.begin() + off, state_.D.begin() + off + n, o->sim.state.D.begin());
+    o->sim.velocity = velocity_.segment(static_cast<Eigen::Index>(off * d),
+                                        static_cast<Eigen::Index>(n * d));
+    o->mesh.set_positions(o->sim.state.x);
+  }
+}
+
+}  // namespace sutura::app
