@@ -59,7 +59,8 @@ TEST(Replay, DefaultSessionWritesSnapshotsMeshesAndReport) {
   ASSERT_TRUE(fs::exists(out / "report.json"));
   auto report = nlohmann::json::parse(read_text(out / "report.json"));
   EXPECT_EQ(report["status"], "ok");
-  EXPECT_EQ(report["actions"].size(), 7u);
+  EXPECT_EQ(report["actions"].size(), 12u);
+  EXPECT_GT(report["probes"]["mid_wall"]["ux"].get<double>(), 0.1);  // inflated outwards
   for (const auto& a : report["actions"]) EXPECT_GE(a["seconds"].get<double>(), 0.0);
   EXPECT_EQ(report["objects"]["aorta"]["boundary_loop_sizes"].size(), 2u);
   EXPECT_EQ(report["objects"]["aorta"]["position_hash"],

@@ -28,7 +28,7 @@ Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& free) const {
 }
 
 Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
-                    bool with_tangent) {
+                    bool with_tangent, bool load_stiffness) {
   Evaluation ev;
   Eigen::VectorXd g, f;
   Triplets K;
@@ -37,11 +37,11 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
   else
     ev.internal_energy = sys.model->energy_gradient(sys.problem, s, g);
   external_forces(sys.problem, s, sys.loads, lambda, sys.dofs_per_node(), f,
-                  with_tangent ? &K : nullptr);
+                  with_tangent && load_stiffness ? &K : nullptr);
   if (!sys.fixed_loads.empty()) {
     Eigen::VectorXd f_fixed;
     external_forces(sys.problem, s, sys.fixed_loads, 1.0, sys.dofs_per_node(), f_fixed,
-                    with_tangent ? &K : nullptr);
+                    with_tangent && load_stiffness ? &K : nullptr);
     f += f_fixed;
   }
   ev.residual = map.restrict(g - f);

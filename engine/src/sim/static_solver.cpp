@@ -121,7 +121,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
 StaticResult linear_solve(const ShellSystem& sys, const DofMap& map, ShellState& state,
                           const StaticSolverParams& params, LinearSolver& solver) {
   StaticResult result;
-  const Evaluation ev = evaluate(sys, map, state, params.lambda_end, true);
+  const Evaluation ev = evaluate(sys, map, state, params.lambda_end, true, false);
   result.history.push_back({params.lambda_end, 0, ev.residual.norm(), ev.internal_energy, 1.0});
   Eigen::VectorXd du;
   if (!solver.factorize(ev.tangent)) {

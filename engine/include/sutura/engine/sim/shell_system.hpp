@@ -44,10 +44,11 @@ struct Evaluation {
   Eigen::SparseMatrix<double> tangent;  ///< free x free, only when requested
 };
 
-/// Computes the residual (and tangent) at load factor lambda.
+/// Computes the residual (and tangent) at load factor lambda. `load_stiffness` adds the
+/// follower-pressure load stiffness to the tangent (off for a classical linear analysis).
 /// Cost: one model evaluation, O(F), plus sparse assembly when the tangent is requested.
 Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
-                    bool with_tangent);
+                    bool with_tangent, bool load_stiffness = true);
 
 /// Lumped nodal masses (per full DOF): translational rho*t*A/3 per corner; rotational
 /// rho*t*A/3 * max(t^2/12, A/12) so rotations are not massless (no effect on statics).

@@ -24,8 +24,9 @@ struct StaticSolverParams {
   double energy_blowup = 1e12;   ///< energy above this factor times the largest energy seen so far = divergence
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
-  /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the tangent of the
-  /// start state, no iteration (the small-displacement answer of the linear benchmarks).
+  /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the stiffness of
+  /// the start state (without follower load stiffness), no iteration: the small-displacement
+  /// answer of the linear benchmarks.
   bool linear = false;
 };
 
