@@ -71,6 +71,7 @@ TEST(SessionParse, PatchShapes) {
   EXPECT_DOUBLE_EQ(p.target_edge_length, 0.5);
 }
 
+// A session text that must fail, and what the error must say.
 struct BadCase {
   std::string text;
   int line;
@@ -139,7 +140,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "'..'"},
         BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"a.stl\", "
                           "\"weld_tolerance\": 0.5}\n",
-                2, "weld_tolerance", "between"}));
+                2, "weld_tolerance", "between"}),
+    [](const ::testing::TestParamInfo<BadCase>& info) {
+      std::string name = "line" + std::to_string(info.param.line) + "_" + info.param.field;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name + "_" + std::to_string(info.index);
+    });
 
 TEST(SessionLoad, MissingFileAndDirectory) {
   EXPECT_THROW(load_session("/nonexistent/session.jsonl"), SessionError);

@@ -71,6 +71,9 @@ class LdltSolver final : public LinearSolver {
 
 class CholmodSolver final : public LinearSolver {
  public:
+  // CHOLMOD prints a warning for every indefinite matrix; the fallback is reported through
+  // last_note() instead, so its own printing is switched off.
+  CholmodSolver() { llt_.cholmod().print = 0; }
   bool factorize(const SpMat& A) override {
     note_.clear();
     if (!cache_.same(A)) llt_.analyzePattern(A);

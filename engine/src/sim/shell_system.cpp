@@ -28,10 +28,12 @@ Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& free) const {
 }
 
 Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
-                    bool with_tangent, bool load_stiffness) {
+                    bool with_tangent, bool load_stiffness, TangentAssembler* assembler) {
   Evaluation ev;
   Eigen::VectorXd g, f;
-  Triplets K;
+  TangentAssembler local;
+  TangentAssembler& as = assembler != nullptr ? *assembler : local;
+  Triplets& K = as.buffer();
   if (with_tangent)
     ev.internal_energy = sys.model->energy_gradient_hessian(sys.problem, s, g, K, true);
   else
@@ -46,18 +48,8 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
   }
   ev.residual = map.restrict(g - f);
   ev.external_norm = map.restrict(f).norm();
-  if (with_tangent) {
-    // Drop rows/columns of fixed DOFs in place, renumbering to free indices.
-    std::size_t kept = 0;
-    for (const auto& t : K) {
-      const int r = map.full_to_free[t.row()], c = map.full_to_free[t.col()];
-      if (r >= 0 && c >= 0) K[kept++] = Eigen::Triplet<double>(r, c, t.value());
-    }
-    K.resize(kept);
-    const auto n = static_cast<Eigen::Index>(map.num_free());
-    ev.tangent.resize(n, n);
-    ev.tangent.setFromTriplets(K.begin(), K.end());
-  }
+  if (with_tangent)
+    as.assemble(K, map.full_to_free, static_cast<Eigen::Index>(map.num_free()), ev.tangent);
   return ev;
 }
 

@@ -48,7 +48,7 @@ TEST(Dynamics, HookCanStopTheRun) {
     ++calls;
     return step < 5;
   });
-  EXPECT_TRUE(r.ok);
+  EXPECT_TRUE(r.ok) << r.message;
   EXPECT_EQ(r.steps_done, 5);
   EXPECT_EQ(calls, 6);
 }

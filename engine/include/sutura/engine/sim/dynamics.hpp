@@ -1,7 +1,10 @@
 #pragma once
 // Implicit (backward) Euler dynamics with lumped mass and Rayleigh damping C = alpha*M + beta*K.
 // Unconditionally stable, numerically dissipative: what "settling" and rest-shape relaxation
-// need (paper, Sec. 2.3). Each step solves the nonlinear step equation with Newton.
+// need (paper, Sec. 2.3). Each step solves the nonlinear step equation with a modified Newton
+// method that reuses the factorised step matrix across iterations and steps while it still
+// converges (see dynamics.cpp); the stiffness-proportional damping uses the tangent of the
+// last refactorisation.
 #include <functional>
 #include <string>
 
@@ -15,8 +18,8 @@ struct DynamicsParams {
   int steps = 100;             ///< >= 1
   double mass_damping = 10.0;  ///< Rayleigh alpha, 1/s, >= 0
   double stiffness_damping = 1e-3;  ///< Rayleigh beta, s, >= 0
-  double tolerance = 1e-8;     ///< Newton tolerance per step, relative to the step's first residual
-  int max_iterations = 10;     ///< Newton iterations per step
+  double tolerance = 1e-6;     ///< Newton tolerance per step, relative to the step's first residual
+  int max_iterations = 20;     ///< Newton iterations per step
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
 };

@@ -12,6 +12,7 @@
 #include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/sim/constraints.hpp"
 #include "sutura/engine/sim/loads.hpp"
+#include "sutura/engine/sim/tangent_assembler.hpp"
 
 namespace sutura::engine {
 
@@ -46,9 +47,11 @@ struct Evaluation {
 
 /// Computes the residual (and tangent) at load factor lambda. `load_stiffness` adds the
 /// follower-pressure load stiffness to the tangent (off for a classical linear analysis).
-/// Cost: one model evaluation, O(F), plus sparse assembly when the tangent is requested.
+/// Cost: one model evaluation, O(F), plus sparse assembly when the tangent is requested;
+/// pass the same `assembler` to repeated calls so the sparsity pattern is built only once.
 Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
-                    bool with_tangent, bool load_stiffness = true);
+                    bool with_tangent, bool load_stiffness = true,
+                    TangentAssembler* assembler = nullptr);
 
 /// Lumped nodal masses (per full DOF): translational rho*t*A/3 per corner; rotational
 /// rho*t*A/3 * max(t^2/12, A/12) so rotations are not massless (no effect on statics).
