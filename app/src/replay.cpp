@@ -23,6 +23,17 @@ using nlohmann::json;
 
 namespace {
 
+// Loads that reached full value become part of the applied (constant) loads.
+void commit_pending_loads(SceneObject& o) {
+  auto& p = o.sim.pending_loads;
+  auto& a = o.sim.applied_loads;
+  a.nodal.insert(a.nodal.end(), p.nodal.begin(), p.nodal.end());
+  a.pressures.insert(a.pressures.end(), p.pressures.begin(), p.pressures.end());
+  a.body_force_per_area += p.body_force_per_area;
+  p = engine::Loads{};
+  o.sim.pending_factor = 0.0;
+}
+
 // Mutable state of one replay: the objects, the report being built and the renderer.
 struct Run {
   const Session& session;
@@ -221,17 +232,8 @@ struct Run {
                          {"residual", h.residual}, {"energy", h.energy},
                          {"step_length", h.step_length}});
     for (SceneObject* o : objs) {
-      if (r.converged && op.load_factor >= 1.0) {
-        auto& p = o->sim.pending_loads;
-        auto& a = o->sim.applied_loads;
-        a.nodal.insert(a.nodal.end(), p.nodal.begin(), p.nodal.end());
-        a.pressures.insert(a.pressures.end(), p.pressures.begin(), p.pressures.end());
-        a.body_force_per_area += p.body_force_per_area;
-        p = engine::Loads{};
-        o->sim.pending_factor = 0.0;
-      } else {
-        o->sim.pending_factor = r.lambda_reached;
-      }
+      if (r.converged && op.load_factor >= 1.0) commit_pending_loads(*o);
+      else o->sim.pending_factor = r.lambda_reached;
     }
     if (!r.converged) throw std::runtime_error(r.message);
     return {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},
@@ -249,15 +251,7 @@ struct Run {
     merged.velocity() = ds.velocity;
     merged.write_back();
     if (!r.ok) throw std::runtime_error(r.message);
-    for (SceneObject* o : objs) {
-      auto& p = o->sim.pending_loads;
-      auto& a = o->sim.applied_loads;
-      a.nodal.insert(a.nodal.end(), p.nodal.begin(), p.nodal.end());
-      a.pressures.insert(a.pressures.end(), p.pressures.begin(), p.pressures.end());
-      a.body_force_per_area += p.body_force_per_area;
-      p = engine::Loads{};
-      o->sim.pending_factor = 0.0;
-    }
+    for (SceneObject* o : objs) commit_pending_loads(*o);
     return {{"model", model->name()}, {"steps", r.steps_done},
             {"newton_iterations", r.newton_iterations}, {"kinetic_energy", r.kinetic_energy},
             {"strain_energy", r.strain_energy}, {"residual", r.residual}};

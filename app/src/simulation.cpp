@@ -37,9 +37,8 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
     : objects_(objects) {
   if (objects.empty()) throw std::invalid_argument("nothing to simulate: no objects");
   std::size_t nodes = 0;
-  // Body forces act per object; they are folded into per-face pressure-free nodal form by the
-  // engine, so objects with different body forces cannot share one Loads::body_force: they
-  // are converted to nodal loads here on each object's rest areas.
+  // A body force is per object, but the merged system has one Loads::body_force_per_area:
+  // each object's body force is converted to nodal loads on its own rest areas instead.
   for (SceneObject* o : objects) {
     node_offset_.push_back(nodes);
     const std::size_t face_offset = faces_.size();

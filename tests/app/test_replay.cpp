@@ -6,6 +6,7 @@
 
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/render/image.hpp"
 
@@ -177,4 +178,48 @@ TEST(SuturaCli, EscapingSessionIsRejectedBeforeWriting) {
   EXPECT_FALSE(fs::exists(dir / "escaped.obj"));
   EXPECT_FALSE(fs::exists(dir.parent_path() / "escaped.obj"));
   fs::remove_all(dir);
+}
+
+TEST(Replay, FailedSolveIsRolledBackAndReported) {
+  fs::path dir = fresh_dir("diverge");
+  std::ofstream(dir / "s.jsonl")
+      << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+      << "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"strip\", \"segments_length\": 8, \"segments_width\": 2}\n"
+      << "{\"op\": \"force\", \"object\": \"a\", \"nearest\": [[40, 0, 0]], \"force\": [0, 0, 1]}\n"
+      << "{\"op\": \"solve\", \"max_iterations\": 3}\n";
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  try {
+    replay(load_session(dir / "s.jsonl"), o);
+    FAIL() << "an unconstrained strip cannot be in equilibrium";
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_NE(std::string(e.what()).find("rolled back"), std::string::npos) << e.what();
+  }
+  auto report = nlohmann::json::parse(read_text(dir / "out" / "report.json"));
+  EXPECT_EQ(report["status"], "failed");
+  // The state is the last good one: the unloaded strip.
+  const auto strip = sutura::engine::make_strip({40.0, 10.0, 8, 2});
+  EXPECT_EQ(report["objects"]["a"]["position_hash"], position_hash(strip));
+  fs::remove_all(dir);
+}
+
+TEST(Replay, SimulationOpsProduceProbesAndChecks) {
+  const fs::path session = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "benchmarks" / "sze_cantilever.jsonl";
+  fs::path out = fresh_dir("sze");
+  ReplayOptions o;
+  o.out_dir = out;
+  ReplayResult r = replay(load_session(session), o);
+  ASSERT_TRUE(r.report["probes"].contains("tip"));
+  EXPECT_EQ(r.report["checks"].size(), 2u);
+  for (const auto& c : r.report["checks"]) EXPECT_TRUE(c["pass"].get<bool>());
+  bool found = false;
+  for (const auto& a : r.report["actions"])
+    if (a["op"] == "solve") {
+      found = true;
+      EXPECT_TRUE(a["converged"].get<bool>());
+      EXPECT_GT(a["history"].size(), 4u);
+    }
+  EXPECT_TRUE(found);
+  fs::remove_all(out);
 }

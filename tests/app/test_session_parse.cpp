@@ -140,7 +140,28 @@ INSTANTIATE_TEST_SUITE_P(
                 "'..'"},
         BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"a.stl\", "
                           "\"weld_tolerance\": 0.5}\n",
-                2, "weld_tolerance", "between"}),
+                2, "weld_tolerance", "between"},
+        BadCase{kHeader + "{\"op\": \"constrain\", \"object\": \"a\", \"vertices\": [1], "
+                          "\"boundary\": \"all\"}\n",
+                2, "", "exactly one vertex selection"},
+        BadCase{kHeader + "{\"op\": \"constrain\", \"object\": \"a\", \"boundary\": \"all\", "
+                          "\"dofs\": [\"uw\"]}\n",
+                2, "", "unknown degree of freedom"},
+        BadCase{kHeader + "{\"op\": \"force\", \"object\": \"a\", \"vertices\": [-1], "
+                          "\"force\": [0, 0, 1]}\n",
+                2, "vertices", "whole numbers"},
+        BadCase{kHeader + "{\"op\": \"material\", \"object\": \"a\", \"poisson_ratio\": 0.5}\n",
+                2, "poisson_ratio", "[0, 0.5)"},
+        BadCase{kHeader + "{\"op\": \"body_force\", \"object\": \"a\"}\n", 2, "per_area",
+                "exactly one"},
+        BadCase{kHeader + "{\"op\": \"solve\", \"load_factor\": 1.5}\n", 2, "load_factor",
+                "(0, 1]"},
+        BadCase{kHeader + "{\"op\": \"solve\", \"model\": \"membrane\"}\n", 2, "model",
+                "not one of"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"dt\": 0}\n", 2, "dt", "greater than 0"},
+        BadCase{kHeader + "{\"op\": \"check\", \"probe\": \"p\", \"quantity\": \"uz\", "
+                          "\"value\": 1}\n",
+                2, "rel_tol", "rel_tol and/or abs_tol"}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
       std::string name = "line" + std::to_string(info.param.line) + "_" + info.param.field;
       for (char& c : name)
