@@ -61,6 +61,42 @@ SurfaceMesh make_tube(const TubeParams& p) {
   return SurfaceMesh(std::move(positions), std::move(faces));
 }
 
+SurfaceMesh make_cylinder_panel(const CylinderPanelParams& p) {
+  require_positive("make_cylinder_panel", "radius", p.radius);
+  require_positive("make_cylinder_panel", "length", p.length);
+  const double span = p.angle_end_deg - p.angle_start_deg;
+  if (!(span > 0.0 && span < 360.0))
+    throw InvalidArgument("make_cylinder_panel: angle_end_deg - angle_start_deg must be in (0, 360) (got " +
+                          detail::format_number(span) + ")");
+  require_at_least("make_cylinder_panel", "segments_around", p.segments_around, 1);
+  require_at_least("make_cylinder_panel", "segments_along", p.segments_along, 1);
+  require_face_budget("make_cylinder_panel",
+                      "segments_around = " + std::to_string(p.segments_around) +
+                          " and segments_along = " + std::to_string(p.segments_along),
+                      2.0 * p.segments_around * p.segments_along);
+
+  const int na = p.segments_around;
+  const int nl = p.segments_along;
+  std::vector<Vec3> positions;
+  positions.reserve(static_cast<std::size_t>(na + 1) * (nl + 1));
+  for (int j = 0; j <= nl; ++j) {
+    const double y = p.length * j / nl;
+    for (int i = 0; i <= na; ++i) {
+      const double theta = (p.angle_start_deg + span * i / na) * std::numbers::pi / 180.0;
+      positions.emplace_back(p.radius * std::sin(theta), y, p.radius * std::cos(theta));
+    }
+  }
+  std::vector<FaceIndices> faces;
+  faces.reserve(2 * static_cast<std::size_t>(na) * nl);
+  const auto id = [na](int i, int j) { return j * (na + 1) + i; };
+  for (int j = 0; j < nl; ++j)
+    for (int i = 0; i < na; ++i)
+      // Around (+theta) then along (+y) is counter-clockwise seen from outside: d/dtheta x d/dy
+      // points away from the axis.
+      add_quad(faces, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 0);
+  return SurfaceMesh(std::move(positions), std::move(faces));
+}
+
 SurfaceMesh make_strip(const StripParams& p) {
   require_positive("make_strip", "length", p.length);
   require_positive("make_strip", "width", p.width);

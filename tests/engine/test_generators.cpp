@@ -141,6 +141,45 @@ TEST(Tube, ParameterErrors) {
 
 // --- strip -------------------------------------------------------------------------------------
 
+TEST(CylinderPanel, CountsBoundaryAndOutwardNormals) {
+  CylinderPanelParams p;
+  p.radius = 25.0;
+  p.length = 50.0;
+  p.angle_start_deg = -40.0;
+  p.angle_end_deg = 40.0;
+  p.segments_around = 8;
+  p.segments_along = 6;
+  const SurfaceMesh m = make_cylinder_panel(p);
+  EXPECT_TRUE(m.validate().ok()) << m.validate().summary();
+  EXPECT_EQ(m.num_vertices(), 9u * 7u);
+  EXPECT_EQ(m.num_faces(), 2u * 8u * 6u);
+  const auto loops = m.boundary_loops();
+  ASSERT_EQ(loops.size(), 1u);
+  EXPECT_EQ(loops[0].size(), 2u * (8u + 6u));
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const Vec3 c = m.face_centroid(FaceId(f));
+    const Vec3 radial(c.x(), 0.0, c.z());
+    EXPECT_GT(m.face_normal(FaceId(f)).dot(radial.normalized()), 0.95) << "face " << f;
+  }
+  for (const Vec3& v : m.positions()) EXPECT_NEAR(std::hypot(v.x(), v.z()), 25.0, 1e-12);
+  // The chord area of the facets approaches R * span * L from below.
+  const double exact = 25.0 * (80.0 * std::numbers::pi / 180.0) * 50.0;
+  EXPECT_LT(m.total_area(), exact);
+  EXPECT_GT(m.total_area(), 0.99 * exact);
+}
+
+TEST(CylinderPanel, ParameterErrors) {
+  CylinderPanelParams p;
+  p.angle_end_deg = p.angle_start_deg;
+  EXPECT_THROW(make_cylinder_panel(p), InvalidArgument);
+  p = {};
+  p.radius = -1.0;
+  EXPECT_THROW(make_cylinder_panel(p), InvalidArgument);
+  p = {};
+  p.segments_along = 0;
+  EXPECT_THROW(make_cylinder_panel(p), InvalidArgument);
+}
+
 TEST(Strip, CountsAreaAndOrientation) {
   const StripParams p{.length = 30.0, .width = 6.0, .segments_length = 15, .segments_width = 4};
   const SurfaceMesh mesh = make_strip(p);
