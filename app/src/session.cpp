@@ -143,12 +143,16 @@ SnapshotOp parse_snapshot(Fields& f) {
   op.height = f.optional_int("height", op.height, 16, 8192);
   op.objects = f.optional_string_list("objects");
   const std::string field =
-      f.optional_choice("field", "none", {"none", "displacement", "x", "y", "z"});
+      f.optional_choice("field", "none", {"none", "displacement", "x", "y", "z", "membrane_strain",
+                                          "bending", "energy_density"});
   static const std::map<std::string, Field> fields = {{"none", Field::None},
                                                       {"displacement", Field::Displacement},
                                                       {"x", Field::X},
                                                       {"y", Field::Y},
-                                                      {"z", Field::Z}};
+                                                      {"z", Field::Z},
+                                                      {"membrane_strain", Field::MembraneStrain},
+                                                      {"bending", Field::Bending},
+                                                      {"energy_density", Field::EnergyDensity}};
   op.field = fields.at(field);
   if (f.has("range") && op.field == Field::None) f.fail("range", "needs a colour field");
   op.range = f.optional_range("range");

@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "sutura/engine/shell/shell_model.hpp"
+
 namespace sutura::app {
 
 namespace {
@@ -23,8 +25,38 @@ struct ObjectArrays {
   render::Color color{};
 };
 
+// Per-element measures of Model 1 (the default shell model) averaged to the vertices with
+// face-area weights. The current state uses the simulated nodal rotations; the before-state
+// is taken with identity rotations (it is the stress-free reference of a fresh object).
+std::vector<float> element_field(Field field, const SceneObject& obj,
+                                 const engine::SurfaceMesh& state) {
+  const bool current = &state == &obj.mesh;
+  const engine::ShellState s = current ? obj.sim.state : engine::state_from_mesh(state);
+  const auto model = engine::make_corotational_shell();
+  const engine::ShellProblem problem{&state.faces(), &obj.sim.rest, &obj.sim.materials,
+                                     &obj.sim.face_material, state.num_vertices()};
+  const engine::ElementMeasures m = model->measures(problem, s);
+  const std::vector<double>& per_face = field == Field::MembraneStrain ? m.membrane_strain
+                                        : field == Field::Bending      ? m.bending_curvature
+                                                                       : m.energy_density;
+  std::vector<double> sum(state.num_vertices(), 0.0), weight(state.num_vertices(), 0.0);
+  for (std::size_t f = 0; f < state.num_faces(); ++f) {
+    const double a = state.face_area(engine::FaceId(f));
+    for (auto v : state.face_vertices(engine::FaceId(f))) {
+      sum[v.index()] += a * per_face[f];
+      weight[v.index()] += a;
+    }
+  }
+  std::vector<float> out(state.num_vertices());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = weight[i] > 0.0 ? static_cast<float>(sum[i] / weight[i]) : 0.0f;
+  return out;
+}
+
 std::vector<float> field_values(Field field, const SceneObject& obj,
                                 const engine::SurfaceMesh& state) {
+  if (field == Field::MembraneStrain || field == Field::Bending || field == Field::EnergyDensity)
+    return element_field(field, obj, state);
   std::vector<float> v(state.num_vertices());
   for (std::size_t i = 0; i < v.size(); ++i) {
     const engine::Vec3& p = state.positions()[i];
@@ -39,7 +71,7 @@ std::vector<float> field_values(Field field, const SceneObject& obj,
         v[i] = static_cast<float>((p - obj.before.positions()[i]).norm());
         break;
       }
-      case Field::None: break;
+      default: break;
     }
   }
   return v;
@@ -96,6 +128,9 @@ std::string field_label(Field f) {
     case Field::X: return "x [mm]";
     case Field::Y: return "y [mm]";
     case Field::Z: return "z [mm]";
+    case Field::MembraneStrain: return "max principal membrane strain [-]";
+    case Field::Bending: return "curvature change [1/mm]";
+    case Field::EnergyDensity: return "strain energy density [N/mm]";
     case Field::None: break;
   }
   return {};

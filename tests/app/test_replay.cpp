@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "sutura/app/replay.hpp"
@@ -60,7 +61,7 @@ TEST(Replay, DefaultSessionWritesSnapshotsMeshesAndReport) {
   ASSERT_TRUE(fs::exists(out / "report.json"));
   auto report = nlohmann::json::parse(read_text(out / "report.json"));
   EXPECT_EQ(report["status"], "ok");
-  EXPECT_EQ(report["actions"].size(), 12u);
+  EXPECT_EQ(report["actions"].size(), 13u);
   EXPECT_GT(report["probes"]["mid_wall"]["ux"].get<double>(), 0.1);  // inflated outwards
   for (const auto& a : report["actions"]) EXPECT_GE(a["seconds"].get<double>(), 0.0);
   EXPECT_EQ(report["objects"]["aorta"]["boundary_loop_sizes"].size(), 2u);
@@ -79,6 +80,13 @@ TEST(Replay, DefaultSessionWritesSnapshotsMeshesAndReport) {
   EXPECT_EQ(single.pixel(single.width - 1, single.height - 1), bg);
   EXPECT_NE(single.pixel(single.width / 2, single.height / 2), bg);
 
+  // Membrane strain map: the inflated wall is coloured, so the image is not one flat colour
+  // apart from the background.
+  auto strain = read_png(out / "strain.png");
+  std::set<std::array<std::uint8_t, 4>> colours;
+  for (int y = strain.height / 4; y < 3 * strain.height / 4; y += 7)
+    colours.insert(strain.pixel(strain.width / 2, y));
+  EXPECT_GT(colours.size(), 3u);
   auto aorta = sutura::engine::load_mesh(out / "meshes" / "aorta.obj");
   EXPECT_EQ(aorta.num_faces(), 2u * 32 * 48);
   auto patch = sutura::engine::load_mesh(out / "meshes" / "patch.stl");

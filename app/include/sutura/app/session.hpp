@@ -73,7 +73,7 @@ struct CameraSpec {
 };
 
 /// Per-vertex field shown as colours.
-enum class Field { None, Displacement, X, Y, Z };
+enum class Field { None, Displacement, X, Y, Z, MembraneStrain, Bending, EnergyDensity };
 
 /// Renders the named objects (all when empty) to a PNG inside the output directory.
 struct SnapshotOp {
