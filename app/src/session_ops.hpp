@@ -1,0 +1,32 @@
+#pragma once
+// Op parsers, one family per file (session_ops_scene.cpp, session_ops_simulation.cpp), and the
+// field helpers they share. session.cpp dispatches on the op name through op_parsers().
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "session_fields.hpp"
+#include "sutura/app/session.hpp"
+
+namespace sutura::app::detail {
+
+using OpParse = Op (*)(Fields& f, const std::filesystem::path& session_file);
+
+struct OpParser {
+  const char* name;
+  OpParse parse;
+};
+
+/// generate, load, snapshot, export, report.
+const std::vector<OpParser>& scene_op_parsers();
+/// material, constrain, force, line_load, pressure, body_force, solve, simulate, probe, check.
+const std::vector<OpParser>& simulation_op_parsers();
+
+/// An output path field: relative, no escapes, one of `extensions` (lower case, with dot).
+std::filesystem::path output_file(Fields& f, const std::string& key,
+                                  const std::vector<std::string>& extensions);
+/// The "object" field: letters, digits, '_' and '-'.
+std::string object_name(Fields& f);
+engine::Vec3 vec(const Vec3f& v);
+
+}  // namespace sutura::app::detail

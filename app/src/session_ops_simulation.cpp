@@ -1,0 +1,204 @@
+// Parsers of the simulation ops: material, constrain, force, line_load, pressure, body_force,
+// solve, simulate, probe, check.
+#include "session_ops.hpp"
+#include "sutura/engine/sim/linear_solver.hpp"
+
+namespace sutura::app::detail {
+
+namespace {
+
+// Exactly one of: vertices, nearest, box, plane, boundary.
+VertexSelection parse_selection(Fields& f) {
+  const std::vector<std::string> keys = {"vertices", "nearest", "box", "plane", "boundary"};
+  int count = 0;
+  for (const auto& k : keys) count += f.has(k) ? 1 : 0;
+  if (count != 1)
+    f.fail("", "give exactly one vertex selection: vertices, nearest, box, plane or boundary");
+  VertexSelection sel;
+  if (const auto* v = f.raw("vertices")) {
+    engine::SelectIds ids;
+    if (!v->is_array() || v->empty()) f.fail("vertices", "must be a non-empty array of vertex ids");
+    for (const auto& e : *v) {
+      if (!e.is_number_integer() || e.get<long long>() < 0 || e.get<long long>() > INT32_MAX)
+        f.fail("vertices", "must be a non-empty array of vertex ids (whole numbers >= 0)");
+      ids.ids.emplace_back(static_cast<std::int32_t>(e.get<long long>()));
+    }
+    sel.engine = ids;
+  } else if (f.has("nearest")) {
+    engine::SelectNearest n;
+    for (const auto& p : f.vec3_list("nearest")) n.points.push_back(vec(p));
+    sel.engine = n;
+  } else if (auto box = f.optional_object("box")) {
+    engine::SelectBox b{vec(box->required_vec3("min")), vec(box->required_vec3("max"))};
+    if (!(b.min.array() <= b.max.array()).all()) box->fail("max", "must be >= min componentwise");
+    box->finish();
+    sel.engine = b;
+  } else if (auto plane = f.optional_object("plane")) {
+    engine::SelectPlaneBand p;
+    p.point = vec(plane->required_vec3("point"));
+    p.normal = vec(plane->required_vec3("normal"));
+    if (p.normal.isZero()) plane->fail("normal", "must not be the zero vector");
+    p.distance = plane->optional_number("distance", 1e-6);
+    if (p.distance < 0.0) plane->fail("distance", "must be >= 0");
+    plane->finish();
+    sel.engine = p;
+  } else {
+    const auto* b = f.raw("boundary");
+    std::vector<int> loops;
+    if (b->is_string() && b->get<std::string>() == "all") {
+    } else if (b->is_array() && !b->empty()) {
+      for (const auto& e : *b) {
+        if (!e.is_number_integer() || e.get<long long>() < 0 || e.get<long long>() > 1000000)
+          f.fail("boundary", "must be \"all\" or an array of boundary loop indices");
+        loops.push_back(static_cast<int>(e.get<long long>()));
+      }
+    } else {
+      f.fail("boundary", "must be \"all\" or an array of boundary loop indices");
+    }
+    sel.boundary_loops = loops;
+  }
+  return sel;
+}
+
+MaterialOp parse_material(Fields& f) {
+  MaterialOp op;
+  op.object = object_name(f);
+  auto& m = op.material;
+  m.youngs_modulus = f.optional_positive("youngs_modulus", m.youngs_modulus);
+  m.poisson_ratio = f.optional_number("poisson_ratio", m.poisson_ratio);
+  if (m.poisson_ratio < 0.0 || m.poisson_ratio >= 0.5)
+    f.fail("poisson_ratio", "must be in [0, 0.5)");
+  m.thickness = f.optional_positive("thickness", m.thickness);
+  m.density = f.optional_positive("density", m.density);
+  m.drilling_factor = f.optional_positive("drilling_factor", m.drilling_factor);
+  return op;
+}
+
+ConstrainOp parse_constrain(Fields& f) {
+  ConstrainOp op;
+  op.object = object_name(f);
+  op.where = parse_selection(f);
+  auto dofs = f.optional_string_list("dofs");
+  op.dofs = dofs.empty() ? engine::kAllDofs : engine::parse_dofs(dofs);
+  return op;
+}
+
+ForceOp parse_force(Fields& f) {
+  ForceOp op;
+  op.object = object_name(f);
+  op.where = parse_selection(f);
+  if (!f.has("force") && !f.has("moment")) f.fail("force", "give force and/or moment");
+  if (auto v = f.optional_vec3("force")) op.force = vec(*v);
+  if (auto v = f.optional_vec3("moment")) op.moment = vec(*v);
+  op.per_node = f.optional_choice("distribution", "total", {"total", "per_node"}) == "per_node";
+  return op;
+}
+
+LineLoadOp parse_line_load(Fields& f) {
+  LineLoadOp op;
+  op.object = object_name(f);
+  op.where = parse_selection(f);
+  op.force_per_length = vec(f.required_vec3("force_per_length"));
+  return op;
+}
+
+PressureOp parse_pressure(Fields& f) {
+  PressureOp op;
+  op.object = object_name(f);
+  op.pressure = f.optional_number("pressure", 0.0);
+  if (!f.has("pressure") || op.pressure == 0.0) f.fail("pressure", "missing or zero (MPa)");
+  return op;
+}
+
+BodyForceOp parse_body_force(Fields& f) {
+  BodyForceOp op;
+  op.object = object_name(f);
+  if (f.has("per_area") == f.has("acceleration"))
+    f.fail("per_area", "give exactly one of per_area (N/mm^2) or acceleration (mm/s^2)");
+  if (auto v = f.optional_vec3("per_area")) op.per_area = vec(*v);
+  if (auto v = f.optional_vec3("acceleration")) op.acceleration = vec(*v);
+  return op;
+}
+
+engine::LinearSolverKind linear_solver(Fields& f, engine::LinearSolverKind fallback) {
+  return engine::parse_linear_solver(
+      f.optional_choice("linear_solver", engine::to_string(fallback), {"cholmod", "ldlt", "pcg"}));
+}
+
+SolveOp parse_solve(Fields& f) {
+  SolveOp op;
+  op.objects = f.optional_string_list("objects");
+  op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
+  op.load_factor = f.optional_positive("load_factor", op.load_factor);
+  if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
+  auto& p = op.params;
+  p.load_steps = f.optional_int("load_steps", p.load_steps, 1, 100000);
+  p.tolerance = f.optional_positive("tolerance", p.tolerance);
+  if (p.tolerance >= 1.0) f.fail("tolerance", "must be below 1");
+  p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 10000);
+  p.line_search = f.optional_bool("line_search", p.line_search);
+  p.linear_solver = linear_solver(f, p.linear_solver);
+  p.linear = f.optional_choice("analysis", "nonlinear", {"nonlinear", "linear"}) == "linear";
+  return op;
+}
+
+SimulateOp parse_simulate(Fields& f) {
+  SimulateOp op;
+  op.objects = f.optional_string_list("objects");
+  op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
+  auto& p = op.params;
+  p.dt = f.optional_positive("dt", p.dt);
+  p.steps = f.optional_int("steps", p.steps, 1, 10000000);
+  p.mass_damping = f.optional_number("mass_damping", p.mass_damping);
+  if (p.mass_damping < 0.0) f.fail("mass_damping", "must be >= 0");
+  p.stiffness_damping = f.optional_number("stiffness_damping", p.stiffness_damping);
+  if (p.stiffness_damping < 0.0) f.fail("stiffness_damping", "must be >= 0");
+  p.tolerance = f.optional_positive("tolerance", p.tolerance);
+  if (p.tolerance >= 1.0) f.fail("tolerance", "must be below 1");
+  p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 1000);
+  p.linear_solver = linear_solver(f, p.linear_solver);
+  return op;
+}
+
+ProbeOp parse_probe(Fields& f) {
+  ProbeOp op;
+  op.object = object_name(f);
+  op.name = f.required_string("name");
+  op.point = vec(f.required_vec3("point"));
+  return op;
+}
+
+CheckOp parse_check(Fields& f) {
+  CheckOp op;
+  op.probe = f.required_string("probe");
+  op.quantity = f.optional_choice("quantity", "", {"ux", "uy", "uz", "rx", "ry", "rz", "|u|"});
+  if (op.quantity.empty()) f.fail("quantity", "missing (ux, uy, uz, rx, ry, rz or |u|)");
+  if (!f.has("value")) f.fail("value", "missing");
+  op.value = f.optional_number("value", 0.0);
+  op.rel_tol = f.optional_number("rel_tol", 0.0);
+  op.abs_tol = f.optional_number("abs_tol", 0.0);
+  if (op.rel_tol < 0.0) f.fail("rel_tol", "must be >= 0");
+  if (op.abs_tol < 0.0) f.fail("abs_tol", "must be >= 0");
+  if (op.rel_tol == 0.0 && op.abs_tol == 0.0) f.fail("rel_tol", "give rel_tol and/or abs_tol");
+  return op;
+}
+
+}  // namespace
+
+const std::vector<OpParser>& simulation_op_parsers() {
+  static const std::vector<OpParser> parsers = {
+      {"material", [](Fields& f, const std::filesystem::path&) -> Op { return parse_material(f); }},
+      {"constrain", [](Fields& f, const std::filesystem::path&) -> Op { return parse_constrain(f); }},
+      {"force", [](Fields& f, const std::filesystem::path&) -> Op { return parse_force(f); }},
+      {"line_load", [](Fields& f, const std::filesystem::path&) -> Op { return parse_line_load(f); }},
+      {"pressure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_pressure(f); }},
+      {"body_force", [](Fields& f, const std::filesystem::path&) -> Op { return parse_body_force(f); }},
+      {"solve", [](Fields& f, const std::filesystem::path&) -> Op { return parse_solve(f); }},
+      {"simulate", [](Fields& f, const std::filesystem::path&) -> Op { return parse_simulate(f); }},
+      {"probe", [](Fields& f, const std::filesystem::path&) -> Op { return parse_probe(f); }},
+      {"check", [](Fields& f, const std::filesystem::path&) -> Op { return parse_check(f); }},
+  };
+  return parsers;
+}
+
+}  // namespace sutura::app::detail
