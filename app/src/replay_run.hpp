@@ -1,0 +1,59 @@
+#pragma once
+// The state of one replay and the execution of every op on it. replay.cpp runs the loop;
+// replay_scene_ops.cpp and replay_simulation_ops.cpp execute the two op families.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "snapshot.hpp"
+#include "sutura/app/replay.hpp"
+
+namespace sutura::app::detail {
+
+using nlohmann::json;
+
+// Mutable state of one replay: the objects, the report being built and the renderer.
+struct Run {
+  const Session& session;
+  const ReplayOptions& options;
+  Workspace workspace;
+  SnapshotRenderer snapshots;
+  json actions = json::array();
+  json outputs = json::array();
+  json probes = json::object();
+  json checks = json::array();
+
+  // Output bookkeeping and the report (replay_scene_ops.cpp).
+  std::filesystem::path output(const std::filesystem::path& relative);
+  SceneObject& object(const std::string& name);
+  json report(const std::string& status, const std::string& error, double total) const;
+  void write_report(const std::filesystem::path& relative, const json& r);
+
+  // Scene ops (replay_scene_ops.cpp).
+  json execute(const GenerateOp& op);
+  json execute(const LoadOp& op);
+  json execute(const SnapshotOp& op);
+  json execute(const ExportOp& op);
+  json execute(const ReportOp& op, double elapsed);
+
+  // Simulation ops (replay_simulation_ops.cpp).
+  std::vector<engine::VertexId> resolve(const SceneObject& obj, const VertexSelection& sel);
+  std::vector<SceneObject*> objects_named(const std::vector<std::string>& names);
+  /// Orders boundary vertices `ids` along their boundary loop; they must be one contiguous run.
+  std::vector<engine::VertexId> boundary_chain(const SceneObject& obj,
+                                               const std::vector<engine::VertexId>& ids);
+  json execute(const MaterialOp& op);
+  json execute(const ConstrainOp& op);
+  json execute(const ForceOp& op);
+  json execute(const LineLoadOp& op);
+  json execute(const PressureOp& op);
+  json execute(const BodyForceOp& op);
+  json execute(const SolveOp& op);
+  json execute(const SimulateOp& op);
+  json execute(const ProbeOp& op);
+  json execute(const CheckOp& op);
+};
+
+}  // namespace sutura::app::detail

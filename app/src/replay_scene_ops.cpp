@@ -1,0 +1,95 @@
+// Execution of the scene ops (generate, load, snapshot, export, report) and the report.
+#include "replay_run.hpp"
+#include "sutura/app/output_paths.hpp"
+#include "sutura/app/report.hpp"
+#include "sutura/engine/atomic_file.hpp"
+#include "sutura/engine/mesh_io.hpp"
+
+namespace sutura::app::detail {
+
+namespace fs = std::filesystem;
+
+fs::path Run::output(const fs::path& relative) {
+  fs::path p = resolve_output_path(options.out_dir, relative);
+  outputs.push_back(relative.generic_string());
+  return p;
+}
+
+SceneObject& Run::object(const std::string& name) {
+  SceneObject* o = workspace.find(name);
+  if (o == nullptr)
+    throw std::runtime_error("no object named '" + name + "' (objects: " + workspace.names() +
+                             ")");
+  return *o;
+}
+
+json Run::report(const std::string& status, const std::string& error, double total) const {
+  json objects = json::object();
+  for (const auto& o : workspace.objects()) objects[o.name] = object_summary(o);
+  json r = {{"sutura_version", SUTURA_VERSION},
+            {"session", session.file.generic_string()},
+            {"description", session.description},
+            {"status", status},
+            {"actions", actions},
+            {"objects", objects},
+            {"outputs", outputs},
+            {"probes", probes},
+            {"checks", checks},
+            {"total_seconds", total}};
+  if (!error.empty()) r["error"] = error;
+  return r;
+}
+
+void Run::write_report(const fs::path& relative, const json& r) {
+  engine::write_file_atomically(output(relative), r.dump(2) + "\n");
+}
+
+json Run::execute(const GenerateOp& op) {
+  engine::SurfaceMesh mesh = std::visit(
+      [](const auto& p) -> engine::SurfaceMesh {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, engine::TubeParams>) return engine::make_tube(p);
+        else if constexpr (std::is_same_v<P, engine::StripParams>) return engine::make_strip(p);
+        else if constexpr (std::is_same_v<P, engine::CylinderPanelParams>)
+          return engine::make_cylinder_panel(p);
+        else return engine::make_patch(p);
+      },
+      op.params);
+  const engine::Vec3 t(op.translate[0], op.translate[1], op.translate[2]);
+  if (!t.isZero()) {
+    std::vector<engine::Vec3> moved = mesh.positions();
+    for (auto& p : moved) p += t;
+    mesh.set_positions(std::move(moved));
+  }
+  const auto& obj = workspace.add(op.object, std::move(mesh));
+  return {{"object", op.object}, {"vertices", obj.mesh.num_vertices()},
+          {"faces", obj.mesh.num_faces()}};
+}
+
+json Run::execute(const LoadOp& op) {
+  engine::ImportOptions io;
+  io.weld_tolerance = op.weld_tolerance;
+  const auto& obj = workspace.add(op.object, engine::load_mesh(op.file, io));
+  return {{"object", op.object}, {"file", op.file.generic_string()},
+          {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};
+}
+
+json Run::execute(const SnapshotOp& op) {
+  render::Image image = snapshots.render(op, workspace);
+  const std::vector<std::uint8_t> png = render::encode_png(image);
+  engine::write_file_atomically(
+      output(op.file), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  return {{"file", op.file.generic_string()}, {"width", image.width}, {"height", image.height}};
+}
+
+json Run::execute(const ExportOp& op) {
+  engine::save_mesh(object(op.object).mesh, output(op.file));
+  return {{"object", op.object}, {"file", op.file.generic_string()}};
+}
+
+json Run::execute(const ReportOp& op, double elapsed) {
+  write_report(op.file, report("running", {}, elapsed));
+  return {{"file", op.file.generic_string()}};
+}
+
+}  // namespace sutura::app::detail

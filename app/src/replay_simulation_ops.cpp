@@ -1,0 +1,237 @@
+// Execution of the simulation ops (material, constrain, loads, solve, simulate, probe, check).
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+#include "replay_run.hpp"
+#include "sutura/app/simulation.hpp"
+#include "sutura/engine/sim/selection.hpp"
+
+namespace sutura::app::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Loads that reached full value become part of the applied (constant) loads.
+void commit_pending_loads(SceneObject& o) {
+  auto& p = o.sim.pending_loads;
+  auto& a = o.sim.applied_loads;
+  a.nodal.insert(a.nodal.end(), p.nodal.begin(), p.nodal.end());
+  a.pressures.insert(a.pressures.end(), p.pressures.begin(), p.pressures.end());
+  a.body_force_per_area += p.body_force_per_area;
+  p = engine::Loads{};
+  o.sim.pending_factor = 0.0;
+}
+
+}  // namespace
+
+std::vector<engine::VertexId> Run::resolve(const SceneObject& obj, const VertexSelection& sel) {
+  if (sel.engine) return engine::select_vertices(obj.mesh.positions(), *sel.engine);
+  const auto loops = obj.mesh.boundary_loops();
+  std::vector<engine::VertexId> ids;
+  std::vector<int> wanted = *sel.boundary_loops;
+  if (wanted.empty())
+    for (std::size_t i = 0; i < loops.size(); ++i) wanted.push_back(static_cast<int>(i));
+  for (int i : wanted) {
+    if (i >= static_cast<int>(loops.size()))
+      throw std::runtime_error("object '" + obj.name + "' has " + std::to_string(loops.size()) +
+                               " boundary loops; there is no loop " + std::to_string(i));
+    ids.insert(ids.end(), loops[i].begin(), loops[i].end());
+  }
+  if (ids.empty()) throw std::runtime_error("object '" + obj.name + "' has no boundary");
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+std::vector<SceneObject*> Run::objects_named(const std::vector<std::string>& names) {
+  std::vector<SceneObject*> out;
+  if (names.empty()) {
+    for (const auto& o : workspace.objects()) out.push_back(workspace.find(o.name));
+  } else {
+    for (const auto& n : names) out.push_back(&object(n));
+  }
+  if (out.empty()) throw std::runtime_error("nothing to simulate: the session has no objects yet");
+  return out;
+}
+
+json Run::execute(const MaterialOp& op) {
+  engine::validate(op.material);
+  SceneObject& obj = object(op.object);
+  obj.sim.materials = {op.material};
+  obj.sim.face_material.assign(obj.mesh.num_faces(), 0);
+  return {{"object", op.object}};
+}
+
+json Run::execute(const ConstrainOp& op) {
+  SceneObject& obj = object(op.object);
+  const auto ids = resolve(obj, op.where);
+  obj.sim.constraints.fix(ids, op.dofs, obj.mesh.num_vertices());
+  return {{"object", op.object}, {"vertices", ids.size()}};
+}
+
+json Run::execute(const ForceOp& op) {
+  SceneObject& obj = object(op.object);
+  const auto ids = resolve(obj, op.where);
+  const double share = op.per_node ? 1.0 : 1.0 / static_cast<double>(ids.size());
+  for (auto v : ids)
+    obj.sim.pending_loads.nodal.push_back({v.index(), share * op.force, share * op.moment});
+  return {{"object", op.object}, {"vertices", ids.size()}};
+}
+
+json Run::execute(const LineLoadOp& op) {
+  SceneObject& obj = object(op.object);
+  const auto ids = resolve(obj, op.where);
+  const auto chain = boundary_chain(obj, ids);
+  const auto loads = engine::lump_line_load(obj.mesh.positions(), chain, op.force_per_length);
+  obj.sim.pending_loads.nodal.insert(obj.sim.pending_loads.nodal.end(), loads.begin(), loads.end());
+  return {{"object", op.object}, {"vertices", chain.size()}};
+}
+
+json Run::execute(const PressureOp& op) {
+  SceneObject& obj = object(op.object);
+  obj.sim.pending_loads.pressures.push_back({{}, op.pressure});
+  return {{"object", op.object}};
+}
+
+json Run::execute(const BodyForceOp& op) {
+  SceneObject& obj = object(op.object);
+  if (op.per_area) {
+    obj.sim.pending_loads.body_force_per_area += *op.per_area;
+  } else {
+    // rho * t * a on each face's rest area, lumped equally to its corners.
+    for (std::size_t e = 0; e < obj.mesh.num_faces(); ++e) {
+      const auto& X = obj.sim.rest.elements[e].X;
+      const auto& m = obj.sim.materials[obj.sim.face_material[e]];
+      const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+      for (int k = 0; k < 3; ++k)
+        obj.sim.pending_loads.nodal.push_back(
+            {static_cast<std::size_t>(obj.mesh.faces()[e][k]),
+             m.density * m.thickness * area / 3.0 * *op.acceleration, engine::Vec3::Zero()});
+    }
+  }
+  return {{"object", op.object}};
+}
+
+json Run::execute(const SolveOp& op) {
+  const auto objs = objects_named(op.objects);
+  double start = 0.0;
+  for (SceneObject* o : objs) start = std::max(start, o->sim.pending_factor);
+  if (op.load_factor < start)
+    throw std::runtime_error("load_factor " + std::to_string(op.load_factor) +
+                             " is below the load factor already reached (" +
+                             std::to_string(start) + ")");
+  const auto model = make_model(op.model);
+  MergedSystem merged(objs, *model);
+  engine::StaticSolverParams params = op.params;
+  params.lambda_start = start;
+  params.lambda_end = op.load_factor;
+  const engine::StaticResult r = engine::solve_static(merged.system(), merged.state(), params);
+  merged.write_back();
+  json history = json::array();
+  for (const auto& h : r.history)
+    history.push_back({{"lambda", h.lambda}, {"iteration", h.iteration},
+                       {"residual", h.residual}, {"energy", h.energy},
+                       {"step_length", h.step_length}});
+  for (SceneObject* o : objs) {
+    if (r.converged && op.load_factor >= 1.0) commit_pending_loads(*o);
+    else o->sim.pending_factor = r.lambda_reached;
+  }
+  if (!r.converged) throw std::runtime_error(r.message);
+  return {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},
+          {"residual", r.residual}, {"energy", r.energy}, {"load_factor", r.lambda_reached},
+          {"history", history}};
+}
+
+json Run::execute(const SimulateOp& op) {
+  const auto objs = objects_named(op.objects);
+  const auto model = make_model(op.model);
+  MergedSystem merged(objs, *model);
+  engine::DynamicsState ds{merged.state(), merged.velocity()};
+  const engine::DynamicsResult r = engine::simulate_dynamics(merged.system(), ds, op.params);
+  merged.state() = ds.shell;
+  merged.velocity() = ds.velocity;
+  merged.write_back();
+  if (!r.ok) throw std::runtime_error(r.message);
+  for (SceneObject* o : objs) commit_pending_loads(*o);
+  return {{"model", model->name()}, {"steps", r.steps_done},
+          {"newton_iterations", r.newton_iterations}, {"kinetic_energy", r.kinetic_energy},
+          {"strain_energy", r.strain_energy}, {"residual", r.residual}};
+}
+
+json Run::execute(const ProbeOp& op) {
+  SceneObject& obj = object(op.object);
+  if (obj.before.num_vertices() != obj.mesh.num_vertices())
+    throw std::runtime_error("probe needs object '" + op.object +
+                             "' to have the vertices it had when created");
+  const auto v = engine::select_vertices(obj.before.positions(),
+                                         engine::SelectNearest{{op.point}})[0];
+  const engine::Vec3 u = obj.mesh.position(v) - obj.before.position(v);
+  const Eigen::AngleAxisd aa(obj.sim.state.D[v.index()]);
+  const engine::Vec3 rot = aa.angle() * aa.axis();
+  const engine::Vec3& at = obj.before.position(v);
+  json j = {{"object", op.object},  {"vertex", v.value},
+            {"reference", {at.x(), at.y(), at.z()}},
+            {"ux", u.x()}, {"uy", u.y()}, {"uz", u.z()}, {"|u|", u.norm()},
+            {"rx", rot.x()}, {"ry", rot.y()}, {"rz", rot.z()}};
+  probes[op.name] = j;
+  return {{"probe", op.name}, {"values", j}};
+}
+
+json Run::execute(const CheckOp& op) {
+  if (!probes.contains(op.probe))
+    throw std::runtime_error("no probe named '" + op.probe + "' recorded before this check");
+  const double got = probes[op.probe][op.quantity].get<double>();
+  const double allowed = std::max(op.abs_tol, op.rel_tol * std::abs(op.value));
+  const bool pass = std::abs(got - op.value) <= allowed;
+  json j = {{"probe", op.probe}, {"quantity", op.quantity}, {"value", got},
+            {"expected", op.value}, {"allowed_error", allowed},
+            {"relative_error", op.value != 0.0 ? std::abs(got - op.value) / std::abs(op.value) : 0.0},
+            {"pass", pass}};
+  checks.push_back(j);
+  if (!pass) {
+    std::ostringstream m;
+    m << "check failed: probe '" << op.probe << "' " << op.quantity << " = " << got
+      << ", expected " << op.value << " +- " << allowed;
+    throw std::runtime_error(m.str());
+  }
+  return j;
+}
+
+// Orders boundary vertices `ids` along their boundary loop; they must be one contiguous run.
+std::vector<engine::VertexId> Run::boundary_chain(const SceneObject& obj,
+                                             const std::vector<engine::VertexId>& ids) {
+  const std::set<engine::VertexId> want(ids.begin(), ids.end());
+  for (const auto& loop : obj.mesh.boundary_loops()) {
+    if (want.count(loop.front()) == 0 &&
+        std::none_of(loop.begin(), loop.end(), [&](auto v) { return want.count(v) > 0; }))
+      continue;
+    // Start right after a vertex that is not selected, so the run does not wrap around.
+    const std::size_t n = loop.size();
+    std::size_t start = 0;
+    while (start < n && want.count(loop[start]) > 0) ++start;
+    if (start == n) {  // the whole loop: close it by repeating the first vertex
+      if (ids.size() != n)
+        throw std::runtime_error("the selected vertices do not all lie on one boundary loop");
+      std::vector<engine::VertexId> closed = loop;
+      closed.push_back(loop.front());
+      return closed;
+    }
+    std::vector<engine::VertexId> chain;
+    for (std::size_t i = 1; i <= n; ++i) {
+      const auto v = loop[(start + i) % n];
+      if (want.count(v) > 0) {
+        if (!chain.empty() && want.count(loop[(start + i + n - 1) % n]) == 0)
+          throw std::runtime_error("the selected boundary vertices are not one contiguous run");
+        chain.push_back(v);
+      }
+    }
+    if (chain.size() != ids.size())
+      throw std::runtime_error("the selected vertices do not all lie on one boundary loop");
+    return chain;
+  }
+  throw std::runtime_error("a line load needs vertices on the boundary");
+}
+
+}  // namespace sutura::app::detail
