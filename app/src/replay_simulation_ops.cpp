@@ -201,11 +201,10 @@ json Run::execute(const CheckOp& op) {
 
 // Orders boundary vertices `ids` along their boundary loop; they must be one contiguous run.
 std::vector<engine::VertexId> Run::boundary_chain(const SceneObject& obj,
-                                             const std::vector<engine::VertexId>& ids) {
+                                                  const std::vector<engine::VertexId>& ids) {
   const std::set<engine::VertexId> want(ids.begin(), ids.end());
   for (const auto& loop : obj.mesh.boundary_loops()) {
-    if (want.count(loop.front()) == 0 &&
-        std::none_of(loop.begin(), loop.end(), [&](auto v) { return want.count(v) > 0; }))
+    if (std::none_of(loop.begin(), loop.end(), [&](auto v) { return want.count(v) > 0; }))
       continue;
     // Start right after a vertex that is not selected, so the run does not wrap around.
     const std::size_t n = loop.size();
