@@ -14,6 +14,7 @@ void check(const DynamicsParams& p) {
   if (p.steps < 1) throw InvalidArgument("steps must be at least 1");
   if (p.mass_damping < 0.0) throw InvalidArgument("mass_damping must be >= 0");
   if (p.stiffness_damping < 0.0) throw InvalidArgument("stiffness_damping must be >= 0");
+  if (!(p.force_reference >= 0.0)) throw InvalidArgument("force_reference must be >= 0");
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) throw InvalidArgument("tolerance must be in (0, 1)");
   if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
 }
@@ -78,7 +79,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
         failure = "the state became non-finite (NaN/inf)";
         break;
       }
-      if (ref < 0.0) ref = std::max({rnorm, ev.external_norm, 1e-300});
+      if (ref < 0.0) ref = std::max({rnorm, ev.external_norm, params.force_reference, 1e-300});
       if (rnorm <= params.tolerance * ref) break;
       if (it == params.max_iterations) {
         std::ostringstream m;

@@ -38,6 +38,9 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
     ev.internal_energy = sys.model->energy_gradient_hessian(sys.problem, s, g, K, true);
   else
     ev.internal_energy = sys.model->energy_gradient(sys.problem, s, g);
+  for (const EnergyTerm* term : sys.terms)
+    ev.internal_energy +=
+        term->add_energy_gradient_hessian(s, sys.dofs_per_node(), g, with_tangent ? &K : nullptr);
   external_forces(sys.problem, s, sys.loads, lambda, sys.dofs_per_node(), f,
                   with_tangent && load_stiffness ? &K : nullptr);
   if (!sys.fixed_loads.empty()) {

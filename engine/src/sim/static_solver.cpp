@@ -14,6 +14,8 @@ void check(const StaticSolverParams& p) {
   if (!std::isfinite(p.lambda_start) || !std::isfinite(p.lambda_end))
     throw InvalidArgument("load factors must be finite");
   if (p.load_steps < 1) throw InvalidArgument("load_steps must be at least 1");
+  if (!(p.energy_reference >= 0.0)) throw InvalidArgument("energy_reference must be >= 0");
+  if (!(p.force_reference >= 0.0)) throw InvalidArgument("force_reference must be >= 0");
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) throw InvalidArgument("tolerance must be in (0, 1)");
   if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
   if (p.max_step_cuts < 0) throw InvalidArgument("max_step_cuts must be >= 0");
@@ -48,7 +50,8 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
                    StaticResult& result, TangentAssembler& assembler) {
   const int d = sys.dofs_per_node();
   Evaluation ev = evaluate(sys, map, state, lambda, true, true, &assembler);
-  const double ref = std::max({ev.external_norm, ev.residual.norm(), 1e-300});
+  const double ref =
+      std::max({ev.external_norm, ev.residual.norm(), params.force_reference, 1e-300});
   double step_length = 1.0;
   double first_work = -1.0;
   for (int it = 0;; ++it) {
@@ -174,7 +177,8 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
   external_forces(sys.problem, state, sys.loads,
                   std::max(std::abs(params.lambda_start), std::abs(params.lambda_end)),
                   sys.dofs_per_node(), f, nullptr);
-  double energy_scale = std::max(f.norm() * characteristic_length(state), 1e-30);
+  double energy_scale =
+      std::max({f.norm() * characteristic_length(state), params.energy_reference, 1e-30});
   while (t_done < 1.0 - 1e-12) {
     const double t = std::min(1.0, t_done + dt);
     const double lambda = lambda_at(t);

@@ -20,6 +20,9 @@ struct DynamicsParams {
   double stiffness_damping = 1e-3;  ///< Rayleigh beta, s, >= 0
   double tolerance = 1e-6;     ///< Newton tolerance per step, relative to the step's first residual
   int max_iterations = 20;     ///< Newton iterations per step
+  /// N, >= 0: floor of the force the step tolerance is relative to (besides the step's first
+  /// residual and |f_ext|); 0 = none. Steps taken at equilibrium need it (round-off residual).
+  double force_reference = 0.0;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
 };

@@ -11,6 +11,7 @@
 
 #include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/sim/constraints.hpp"
+#include "sutura/engine/sim/energy_term.hpp"
 #include "sutura/engine/sim/loads.hpp"
 #include "sutura/engine/sim/tangent_assembler.hpp"
 
@@ -22,6 +23,9 @@ struct ShellSystem {
   Constraints constraints;
   Loads loads;        ///< scaled by the load factor lambda
   Loads fixed_loads;  ///< always at full value (loads already brought to equilibrium earlier)
+  /// Extra energies added to the model's in evaluate() (e.g. contact between objects), in this
+  /// order. Non-owning: each must outlive every use of the system.
+  std::vector<const EnergyTerm*> terms;
 
   [[nodiscard]] int dofs_per_node() const { return model->dofs_per_node(); }
   [[nodiscard]] std::size_t num_dofs() const { return problem.num_nodes * dofs_per_node(); }
@@ -39,7 +43,7 @@ struct DofMap {
 
 /// Energy/residual/tangent evaluation on the free DOFs.
 struct Evaluation {
-  double internal_energy = 0.0;  ///< N*mm
+  double internal_energy = 0.0;  ///< N*mm: the model's strain energy plus every extra term's
   Eigen::VectorXd residual;      ///< free DOFs, N (or N*mm for rotations)
   double external_norm = 0.0;    ///< |f_ext| over free DOFs (reference for tolerances)
   Eigen::SparseMatrix<double> tangent;  ///< free x free, only when requested
@@ -47,8 +51,10 @@ struct Evaluation {
 
 /// Computes the residual (and tangent) at load factor lambda. `load_stiffness` adds the
 /// follower-pressure load stiffness to the tangent (off for a classical linear analysis).
-/// Cost: one model evaluation, O(F), plus sparse assembly when the tangent is requested;
-/// pass the same `assembler` to repeated calls so the sparsity pattern is built only once.
+/// Cost: one model evaluation, O(F), plus the extra terms, plus sparse assembly when the
+/// tangent is requested; pass the same `assembler` to repeated calls so the sparsity pattern is
+/// built only once (it is rebuilt whenever a term's triplet structure changes, e.g. when the
+/// set of contact pairs changes).
 Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState& s, double lambda,
                     bool with_tangent, bool load_stiffness = true,
                     TangentAssembler* assembler = nullptr);

@@ -22,6 +22,15 @@ struct StaticSolverParams {
   bool line_search = true;       ///< backtrack (halving, up to 10 times) while |r| does not decrease
   int max_step_cuts = 6;         ///< a failed load step is retried with half the increment this often
   double energy_blowup = 1e12;   ///< energy above this factor times the largest energy seen so far = divergence
+  /// N*mm, >= 0: floor of the energy scale of the blow-up test. 0 = from the loads (|f| times
+  /// the structure's size); set it when a run is driven by something other than loads (the
+  /// rest-shape relaxation of a suture drives with no load at all).
+  double energy_reference = 0.0;
+  /// N, >= 0: floor of the force scale the residual tolerance is relative to (besides |f_ext|
+  /// and the first residual). 0 = none. A run that starts at or near equilibrium with no loads
+  /// (settling after a relaxation) needs it: relative to a round-off first residual the
+  /// tolerance would be unreachable.
+  double force_reference = 0.0;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
   /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the stiffness of

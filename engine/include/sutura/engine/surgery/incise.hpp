@@ -1,0 +1,58 @@
+#pragma once
+// Incision: a purely topological edit (paper, Sec. 2.1) along a curve sketched on the surface.
+#include <vector>
+
+#include "sutura/engine/mesh.hpp"
+#include "sutura/engine/surgery/edit_maps.hpp"
+
+namespace sutura::engine {
+
+enum class IncisionMode {
+  /// Snap every point to its nearest vertex and follow mesh edges (shortest edge path,
+  /// Dijkstra): the paper's prototype. No vertices are added except to split a one-edge slit.
+  SnapToEdges,
+  /// Follow the surface between consecutive points (the trace of the plane through both
+  /// points that contains the mean surface normal) and insert vertices where the curve
+  /// crosses edges, so the incision need not follow the mesh.
+  CutThroughFaces,
+};
+
+/// Parses "snap" | "cut"; throws InvalidArgument otherwise.
+IncisionMode parse_incision_mode(const std::string& name);
+
+struct IncisionParams {
+  IncisionMode mode = IncisionMode::CutThroughFaces;
+  /// Sliver guard, fraction of an edge in (0, 0.5): a crossing closer than this to an edge end
+  /// (or a point closer than this, in barycentric terms, to an edge or corner) snaps to that
+  /// vertex or edge instead of creating a thin triangle.
+  double sliver_fraction = 0.2;
+  /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
+  double max_distance = 1.0;
+};
+
+struct IncisionResult {
+  SurfaceMesh mesh;
+  EditMaps maps;  ///< from the mesh passed in
+  /// The cut as vertices of the new mesh, in the direction the curve was drawn: one lip is
+  /// `left` (the copies, on the left of the drawing direction seen from the normal side), the
+  /// other `right` (the original vertices). Both start at the first curve point and end at the
+  /// last. An interior end is shared by both lips (a slit); an end on the boundary is two
+  /// vertices (the cut opens the boundary loop).
+  std::vector<VertexId> left, right;
+  bool starts_on_boundary = false;
+  bool ends_on_boundary = false;
+  int inserted_vertices = 0;  ///< vertices created where the curve crosses edges or faces
+  int snapped_points = 0;     ///< curve crossings moved to an existing vertex by the sliver guard
+  double length = 0.0;        ///< mm, along the cut
+};
+
+/// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the
+/// surface). Throws InvalidArgument naming the problem for: fewer than two points, a point off
+/// the surface, two consecutive points on the same spot, a curve that crosses itself or runs
+/// along or across the boundary between its ends, a path that cannot be traced (it would leave
+/// the surface). Returns the new mesh (validate() holds) and the parent maps.
+/// Cost: O(F) per point for the projection plus O(F log F) for the rebuild.
+IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                      const IncisionParams& params = {});
+
+}  // namespace sutura::engine

@@ -1,0 +1,39 @@
+#pragma once
+// Placing a patch over an incision and choosing which of its edges meet which lip.
+#include "sutura/engine/generators.hpp"
+#include "sutura/engine/surgery/boundary_chain.hpp"
+
+namespace sutura::engine {
+
+struct PatchPlanParams {
+  PatchShape shape = PatchShape::Ellipse;
+  /// mm: widening across the incision (ellipse minor axis, diamond diagonal, triangle base).
+  double width = 4.0;
+  /// mm along the incision; 0 = the incision's length (mean of the two lips).
+  double length = 0.0;
+  /// mm; 0 = the mean edge length of the lips, so both sides of the suture match.
+  double edge_length = 0.0;
+  /// mm: the lips' end points must lie this close to the boundary.
+  double max_distance = 1.0;
+};
+
+struct PatchPlan {
+  SurfaceMesh rest;    ///< the patch as cut from the sheet: flat, in its own plane (its rest shape)
+  SurfaceMesh placed;  ///< same topology, laid onto the host surface over the incision
+  BoundaryChain lip_left, lip_right;      ///< host chains (boundary direction)
+  BoundaryChain edge_left, edge_right;    ///< patch chains (boundary direction) meeting them
+  double incision_length = 0.0;           ///< mm, mean lip length
+};
+
+/// Plans a patch for the incision whose ends are near `start` and `end` on `host`: an interior
+/// slit (both ends shared by the two lips) takes an ellipse or a diamond; an incision opened
+/// from the boundary (start on the boundary, end inside) takes a triangle whose apex meets the
+/// end and whose base spans the opened boundary (the widening gusset of an anastomosis).
+/// The patch lies in the tangent plane at the incision's middle (long axis along the cut,
+/// normal along the host's), each vertex then projected onto the host surface.
+/// Throws InvalidArgument for an unknown configuration (no such lips, a triangle on a slit, an
+/// ellipse on a boundary incision) or bad sizes.
+PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end,
+                     const PatchPlanParams& params);
+
+}  // namespace sutura::engine

@@ -1,0 +1,86 @@
+#pragma once
+// Rest-shape relaxation (paper, Sec. 2.3). After a suture the joined shape x starts far from
+// the split rest shape x0; a second rest shape y0, congruent with x but with split edges, makes
+// the start stress-free, and the solver then runs while the rest shape moves linearly from y0
+// to x0: rest(s) = lerp(y0, x0, s), s from 0 to 1 (rest_at below). The shell model is never modified.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sutura/engine/shell/rest_state.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+namespace sutura::engine {
+
+/// y0 after an edit: for every face with `congruent[f]` set, the rest element congruent with
+/// the current state (rest_from_state); every other face keeps `base` (its current rest).
+/// `congruent` has one entry per face; faces touching a sutured vertex and newly added patch
+/// faces are the ones to set. Throws InvalidArgument on size mismatches.
+RestState congruent_rest(const std::vector<FaceIndices>& faces, const ShellState& state,
+                         const RestState& base, const std::vector<bool>& congruent);
+
+/// The rest shape at relaxation parameter s in [0, 1]: per element, x0's triangle is first
+/// moved rigidly onto y0's (same centroid, same element frame) and then the corners are
+/// interpolated linearly and the triads by slerp. Elements only see their intrinsic rest shape,
+/// so the rigid move changes nothing physical, but it keeps every interpolated triangle
+/// non-degenerate: two triangles with the same frame have their third corner on the same side
+/// of the first edge, while a plain lerp between a patch cut flat somewhere else and its place
+/// on the vessel can pass through a zero-area triangle. s = 0 gives y0 and s = 1 gives x0,
+/// exactly. Throws InvalidArgument on an element-count mismatch. Cost O(F).
+RestState rest_at(const RestState& y0, const RestState& x0, double s);
+
+enum class RelaxationSolver {
+  Static,   ///< a quasi-static Newton solve at each s (fast; needs a constrained structure)
+  Dynamic,  ///< implicit Euler steps while s advances (the paper's choice; works unconstrained)
+};
+
+/// Parses "static" | "dynamic"; throws InvalidArgument otherwise.
+RelaxationSolver parse_relaxation_solver(const std::string& name);
+
+struct RelaxationParams {
+  RelaxationSolver solver = RelaxationSolver::Static;
+  int steps = 10;          ///< >= 1: increments of s from s_start to s_end (static) or dynamics steps over which s advances
+  double s_start = 0.0;    ///< where the rest shape is now, in [0, 1]
+  double s_end = 1.0;      ///< where to stop, in [s_start, 1]; < 1 leaves the relaxation part-way
+  /// After s_end = 1 is reached: Dynamic runs `settle_steps` more steps; then (both solvers) a
+  /// static solve brings the shape to a tight equilibrium, its residual measured against the
+  /// support reactions (skipped for a structure without supports, which would be singular).
+  bool settle = true;
+  int settle_steps = 20;   ///< >= 0, Dynamic only
+  int max_cuts = 6;        ///< a failed static increment is retried with half the increment this often
+  StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
+  DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
+};
+
+struct RelaxationProgress {
+  double s = 0.0;          ///< current rest-shape parameter
+  int step = 0;            ///< increments or dynamics steps done
+  int steps = 0;           ///< planned
+  double residual = 0.0;   ///< |r| over free DOFs (static residual)
+  double energy = 0.0;     ///< strain energy, N*mm
+  std::string phase;       ///< "relax" or "settle"
+};
+/// Called after every increment/step; return false to cancel (the state is kept as it is).
+using RelaxationHook = std::function<bool(const RelaxationProgress&)>;
+
+struct RelaxationResult {
+  bool ok = false;
+  bool cancelled = false;
+  double s_reached = 0.0;
+  int newton_iterations = 0;
+  double residual = 0.0;
+  double energy = 0.0;
+  std::vector<RelaxationProgress> history;
+  std::string message;  ///< why it stopped early (the state is the last good one)
+};
+
+/// Runs the relaxation on `sys`, whose problem.rest must point at `rest` (overwritten with
+/// rest_at(y0, x0, s) as s advances; on return it holds the rest shape at s_reached). `state`
+/// is updated in place; on failure it is the last converged state. Throws InvalidArgument for
+/// invalid parameters or mismatched sizes.
+RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState& y0,
+                       const RestState& x0, ShellState& state, const RelaxationParams& params,
+                       const RelaxationHook& hook = {});
+
+}  // namespace sutura::engine

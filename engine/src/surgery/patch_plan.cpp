@@ -1,0 +1,121 @@
+#include "sutura/engine/surgery/patch_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+namespace {
+
+VertexId nearest_boundary_vertex(const SurfaceMesh& mesh, const Vec3& p) {
+  VertexId best;
+  double d = HUGE_VAL;
+  for (const auto& loop : mesh.boundary_loops())
+    for (const VertexId v : loop) {
+      const double dv = (mesh.position(v) - p).squaredNorm();
+      if (dv < d) d = dv, best = v;
+    }
+  return best;
+}
+
+double mean_edge(const SurfaceMesh& mesh, const BoundaryChain& c) {
+  return chain_length(mesh, c) / double(c.vertices.size() - 1);
+}
+
+}  // namespace
+
+PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end,
+                     const PatchPlanParams& params) {
+  if (!(params.width > 0)) throw InvalidArgument("patch width must be > 0");
+  if (!(params.length >= 0)) throw InvalidArgument("patch length must be >= 0");
+  if (!(params.edge_length >= 0)) throw InvalidArgument("patch edge_length must be >= 0");
+  PatchPlan plan;
+  // The lips: the arc from start to end and the arc back (shortest candidates; for a slit they
+  // are the only two arcs between the shared ends).
+  ChainSpec left{start, end, std::nullopt, false, params.max_distance};
+  ChainSpec right{end, start, std::nullopt, false, params.max_distance};
+  plan.lip_left = find_boundary_chain(host, left);
+  plan.lip_right = find_boundary_chain(host, right);
+  const bool shared_start = plan.lip_left.vertices.front() == plan.lip_right.vertices.back();
+  const bool shared_end = plan.lip_left.vertices.back() == plan.lip_right.vertices.front();
+  if (!shared_end)
+    throw InvalidArgument("the incision must end inside the surface (its two lips meeting at the "
+                          "end point) for a patch");
+  const bool slit = shared_start;
+  if (slit && params.shape == PatchShape::Triangle)
+    throw InvalidArgument("a triangular patch needs an incision opened from the boundary; use an "
+                          "ellipse or a diamond for a slit");
+  if (!slit && params.shape != PatchShape::Triangle)
+    throw InvalidArgument("an incision opened from the boundary takes a triangular patch");
+
+  const double len_l = chain_length(host, plan.lip_left), len_r = chain_length(host, plan.lip_right);
+  plan.incision_length = 0.5 * (len_l + len_r);
+  PatchParams pp;
+  pp.shape = params.shape;
+  pp.length = params.length > 0 ? params.length : plan.incision_length;
+  pp.width = params.width;
+  pp.target_edge_length = params.edge_length > 0
+                              ? params.edge_length
+                              : 0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right));
+  plan.rest = make_patch(pp);
+
+  // Initial placement: a tent over the closed slit. Along the cut the patch follows the lips;
+  // across it it is compressed to a narrow band (lateral scale k) and arched outwards, so that
+  // (a) its edges start next to the lips they are sutured to, and the lips, which meet the
+  // patch edges at their mean, move by at most a fifth of their edge length (no host triangle
+  // is folded), and (b) the map from the flat patch is an immersion (no patch triangle is
+  // degenerate, even at the tips where both edges meet). y0 is congruent with this shape; the
+  // relaxation then opens the slit to the patch's true width.
+  const auto vn = host.vertex_normals();
+  const auto& lip = plan.lip_left.vertices;
+  std::vector<double> arc(lip.size(), 0.0);
+  for (std::size_t i = 1; i < lip.size(); ++i)
+    arc[i] = arc[i - 1] + (host.position(lip[i]) - host.position(lip[i - 1])).norm();
+  auto lip_at = [&](double fraction, Vec3& point, Vec3& tangent, Vec3& normal) {
+    const double target = std::clamp(fraction, 0.0, 1.0) * arc.back();
+    std::size_t i = 0;
+    while (i + 2 < lip.size() && arc[i + 1] < target) ++i;
+    const double t = std::clamp((target - arc[i]) / std::max(arc[i + 1] - arc[i], 1e-300), 0.0, 1.0);
+    const Vec3 p0 = host.position(lip[i]), p1 = host.position(lip[i + 1]);
+    point = (1 - t) * p0 + t * p1;
+    tangent = (p1 - p0).normalized();
+    normal = ((1 - t) * vn[lip[i].index()] + t * vn[lip[i + 1].index()]).normalized();
+  };
+  const double hl = 0.5 * pp.length, hw = 0.5 * pp.width;
+  auto half_width = [&](double px) {  // of the outline at px
+    const double u = std::clamp(px / hl, -1.0, 1.0);
+    switch (pp.shape) {
+      case PatchShape::Ellipse: return hw * std::sqrt(std::max(0.0, 1.0 - u * u));
+      case PatchShape::Diamond: return hw * (1.0 - std::abs(u));
+      case PatchShape::Triangle: return hw * 0.5 * (1.0 - u);
+    }
+    return hw;
+  };
+  const double lip_edge = 0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right));
+  const double k = std::min(1.0, 0.4 * lip_edge / hw);
+  std::vector<Vec3> placed;
+  placed.reserve(plan.rest.num_vertices());
+  for (const Vec3& p : plan.rest.positions()) {
+    Vec3 point, tangent, normal;
+    lip_at(p.x() / pp.length + 0.5, point, tangent, normal);
+    const Vec3 side = normal.cross(tangent).normalized();
+    const double w = std::max(half_width(p.x()), 1e-12);
+    const double r = std::clamp(p.y() / w, -1.0, 1.0);
+    placed.push_back(point + k * p.y() * side + 0.5 * w * (1.0 - r * r) * normal);
+  }
+  plan.placed = SurfaceMesh(placed, plan.rest.faces());
+
+  // Patch chains: from the tip at the incision's end round to the corner at its start on the
+  // left side (+y), and from the start corner on the right side (-y) to the end tip.
+  const Vec3 tip_end(hl, 0, 0);
+  const Vec3 start_left = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, hw, 0);
+  const Vec3 start_right = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, -hw, 0);
+  const VertexId e = nearest_boundary_vertex(plan.rest, tip_end);
+  plan.edge_left = boundary_chain(plan.rest, e, nearest_boundary_vertex(plan.rest, start_left));
+  plan.edge_right = boundary_chain(plan.rest, nearest_boundary_vertex(plan.rest, start_right), e);
+  return plan;
+}
+
+}  // namespace sutura::engine

@@ -1,0 +1,241 @@
+#include "sutura/engine/surgery/relaxation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+RestState congruent_rest(const std::vector<FaceIndices>& faces, const ShellState& state,
+                         const RestState& base, const std::vector<bool>& congruent) {
+  if (base.elements.size() != faces.size() || congruent.size() != faces.size())
+    throw InvalidArgument("congruent_rest: one rest element and one flag per face needed");
+  const RestState fresh = rest_from_state(faces, state);
+  RestState out = base;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (congruent[f]) out.elements[f] = fresh.elements[f];
+  return out;
+}
+
+RestState rest_at(const RestState& y0, const RestState& x0, double s) {
+  if (y0.elements.size() != x0.elements.size())
+    throw InvalidArgument("rest_at: y0 and x0 differ in element count");
+  if (s <= 0.0) return y0;
+  if (s >= 1.0) return x0;
+  RestState out;
+  out.elements.resize(y0.elements.size());
+  for (std::size_t f = 0; f < y0.elements.size(); ++f) {
+    const ElementRest& a = y0.elements[f];
+    const ElementRest& b = x0.elements[f];
+    const Eigen::Matrix3d Ta = element_frame(a.X[0], a.X[1], a.X[2]);
+    const Eigen::Matrix3d Tb = element_frame(b.X[0], b.X[1], b.X[2]);
+    const Eigen::Matrix3d R = Ta * Tb.transpose();
+    const Vec3 ca = (a.X[0] + a.X[1] + a.X[2]) / 3.0, cb = (b.X[0] + b.X[1] + b.X[2]) / 3.0;
+    ElementRest& e = out.elements[f];
+    for (int k = 0; k < 3; ++k) {
+      e.X[k] = (1.0 - s) * a.X[k] + s * (ca + R * (b.X[k] - cb));
+      e.Q[k] = a.Q[k].slerp(s, b.Q[k]);
+    }
+  }
+  return out;
+}
+
+RelaxationSolver parse_relaxation_solver(const std::string& name) {
+  if (name == "static") return RelaxationSolver::Static;
+  if (name == "dynamic") return RelaxationSolver::Dynamic;
+  throw InvalidArgument("unknown relaxation solver \"" + name +
+                        "\" (expected \"static\" or \"dynamic\")");
+}
+
+namespace {
+
+void check(const ShellSystem& sys, const RestState& rest, const RestState& y0,
+           const RestState& x0, const RelaxationParams& p) {
+  if (sys.problem.rest != &rest)
+    throw InvalidArgument("relax: the system's rest state must be the one relaxed");
+  if (y0.elements.size() != x0.elements.size() || rest.elements.size() != x0.elements.size())
+    throw InvalidArgument("relax: y0, x0 and the rest state differ in element count");
+  if (p.steps < 1) throw InvalidArgument("relaxation steps must be at least 1");
+  if (!(p.s_start >= 0.0 && p.s_start <= 1.0)) throw InvalidArgument("s_start must be in [0, 1]");
+  if (!(p.s_end >= p.s_start && p.s_end <= 1.0))
+    throw InvalidArgument("s_end must be in [s_start, 1]");
+  if (p.settle_steps < 0) throw InvalidArgument("settle_steps must be >= 0");
+  if (p.max_cuts < 0) throw InvalidArgument("max_cuts must be >= 0");
+}
+
+double residual_norm(const ShellSystem& sys, const ShellState& s) {
+  return evaluate(sys, DofMap(sys), s, 1.0, false).residual.norm();
+}
+
+// Scales of the relaxation: the energy and the force the current shape would have in the
+// target rest shape x0 (before any relaxation) bound what the run stores and transmits; they
+// set the blow-up test and the force the residual tolerance is relative to.
+struct Scales {
+  double energy = 0.0;
+  double force = 0.0;
+};
+Scales target_scales(const ShellSystem& sys, const RestState& x0, const ShellState& s) {
+  ShellProblem p = sys.problem;
+  p.rest = &x0;
+  Eigen::VectorXd g;
+  Scales out;
+  out.energy = sys.model->energy_gradient(p, s, g);
+  out.force = DofMap(sys).restrict(g).norm();
+  return out;
+}
+
+StaticSolverParams increment_params(const RelaxationParams& params, const Scales& scales) {
+  StaticSolverParams sp = params.statics;
+  sp.lambda_start = sp.lambda_end = 1.0;
+  sp.load_steps = 1;
+  sp.energy_reference = std::max(sp.energy_reference, scales.energy);
+  return sp;
+}
+
+// Norm of the support reactions (internal forces on fixed DOFs): the force scale of the
+// final equilibrium, against which the settling solve measures its residual. Zero for an
+// unconstrained structure.
+double reaction_norm(const ShellSystem& sys, const ShellState& s) {
+  Eigen::VectorXd g;
+  sys.model->energy_gradient(sys.problem, s, g);
+  const DofMap map(sys);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < map.full_to_free.size(); ++i)
+    if (map.full_to_free[i] < 0) sum += g[Eigen::Index(i)] * g[Eigen::Index(i)];
+  return std::sqrt(sum);
+}
+
+bool settle_static(const ShellSystem& sys, ShellState& state, const RelaxationParams& params,
+                   const Scales& scales, RelaxationResult& result) {
+  StaticSolverParams sp = increment_params(params, scales);
+  sp.force_reference = std::max(sp.force_reference, reaction_norm(sys, state));
+  const StaticResult r = solve_static(sys, state, sp);
+  result.newton_iterations += r.iterations;
+  result.residual = r.residual;
+  result.energy = r.energy;
+  if (!r.converged) result.message = "settling to equilibrium failed: " + r.message;
+  return r.converged;
+}
+
+RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const RestState& y0,
+                              const RestState& x0, ShellState& state, const RelaxationParams& p,
+                              const RelaxationHook& hook, const Scales& scales) {
+  RelaxationResult result;
+  double s = p.s_start;
+  double ds = (p.s_end - p.s_start) / p.steps;
+  int cuts = 0, done = 0;
+  result.s_reached = s;
+  while (s < p.s_end - 1e-12) {
+    const double s_next = std::min(p.s_end, s + ds);
+    rest = rest_at(y0, x0, s_next);
+    const ShellState good = state;
+    const StaticResult r = solve_static(sys, state, increment_params(p, scales));
+    result.newton_iterations += r.iterations;
+    if (!r.converged) {
+      state = good;
+      rest = rest_at(y0, x0, s);
+      if (cuts == p.max_cuts) {
+        std::ostringstream m;
+        m << "relaxation failed at s = " << s_next << ": " << r.message
+          << "; rolled back to s = " << s;
+        result.message = m.str();
+        return result;
+      }
+      ++cuts;
+      ds *= 0.5;
+      continue;
+    }
+    s = s_next;
+    result.s_reached = s;
+    result.residual = r.residual;
+    result.energy = r.energy;
+    RelaxationProgress pr{s, ++done, p.steps, r.residual, r.energy, "relax"};
+    result.history.push_back(pr);
+    if (hook && !hook(pr)) {
+      result.cancelled = true;
+      return result;
+    }
+  }
+  result.ok = true;
+  return result;
+}
+
+RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const RestState& y0,
+                               const RestState& x0, ShellState& state,
+                               const RelaxationParams& p, const RelaxationHook& hook,
+                               const Scales& scales) {
+  RelaxationResult result;
+  DynamicsParams dp = p.dynamics;
+  // Steps taken at (or near) equilibrium have a round-off first residual; measure them
+  // against the forces of the joining instead.
+  dp.force_reference = std::max(dp.force_reference, 1e-3 * scales.force);
+  const int settle = p.s_end >= 1.0 && p.settle ? p.settle_steps : 0;
+  dp.steps = p.steps + settle;
+  DynamicsState ds{state, {}};
+  double s_now = p.s_start;
+  const StepHook step_hook = [&](int step) {
+    if (step > 0) {
+      const double e = sys.model->energy(sys.problem, ds.shell);
+      RelaxationProgress pr{s_now, step, dp.steps, residual_norm(sys, ds.shell), e,
+                            step <= p.steps ? "relax" : "settle"};
+      result.history.push_back(pr);
+      if (hook && !hook(pr)) {
+        result.cancelled = true;
+        return false;
+      }
+    }
+    // The rest shape for step `step` (0-based): s advances linearly over the first p.steps.
+    s_now = p.s_start + (p.s_end - p.s_start) * std::min(1.0, double(step + 1) / p.steps);
+    rest = rest_at(y0, x0, s_now);
+    return true;
+  };
+  const DynamicsResult r = simulate_dynamics(sys, ds, dp, step_hook);
+  state = ds.shell;
+  result.newton_iterations = r.newton_iterations;
+  result.residual = r.residual;
+  result.energy = r.strain_energy;
+  // simulate_dynamics rolls back a failed step; the rest shape then matches the last good one.
+  const int good_steps = r.steps_done;
+  result.s_reached =
+      p.s_start + (p.s_end - p.s_start) * std::min(1.0, double(good_steps) / p.steps);
+  rest = rest_at(y0, x0, result.s_reached);
+  if (!r.ok) {
+    result.message = "relaxation " + r.message;
+    return result;
+  }
+  result.ok = !result.cancelled;
+  return result;
+}
+
+}  // namespace
+
+RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState& y0,
+                       const RestState& x0, ShellState& state, const RelaxationParams& params,
+                       const RelaxationHook& hook) {
+  check(sys, rest, y0, x0, params);
+  const Scales scales = target_scales(sys, x0, state);
+  RelaxationResult result =
+      params.solver == RelaxationSolver::Static
+          ? relax_static(sys, rest, y0, x0, state, params, hook, scales)
+          : relax_dynamic(sys, rest, y0, x0, state, params, hook, scales);
+  if (!result.ok || result.cancelled || result.s_reached < 1.0 || !params.settle) return result;
+  // Settle to a tight static equilibrium, measured against the support reactions (a
+  // structure without supports settles by the dynamics alone: a static solve is singular).
+  if (reaction_norm(sys, state) > 0.0) {
+    const ShellState good = state;
+    if (!settle_static(sys, state, params, scales, result)) {
+      state = good;
+      result.ok = false;
+      return result;
+    }
+    RelaxationProgress pr{1.0, int(result.history.size()) + 1, int(result.history.size()) + 1,
+                          result.residual, result.energy, "settle"};
+    result.history.push_back(pr);
+    if (hook) hook(pr);
+  }
+  return result;
+}
+
+}  // namespace sutura::engine

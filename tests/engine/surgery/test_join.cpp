@@ -1,0 +1,198 @@
+#include "sutura/engine/surgery/join.hpp"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "surgery_fixture.hpp"
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/patch_plan.hpp"
+
+namespace sutura::engine {
+namespace {
+
+using testing::Body;
+
+// Two strips side by side along x with a gap, as one mesh of two components.
+SurfaceMesh two_strips(int n1, int n2, double gap = 2.0) {
+  const SurfaceMesh a = make_strip({10.0, 4.0, 10, n1});
+  const SurfaceMesh b = make_strip({10.0, 4.0, 10, n2});
+  std::vector<Vec3> x = a.positions();
+  std::vector<FaceIndices> f = a.faces();
+  const int off = int(x.size());
+  for (const Vec3& p : b.positions()) x.push_back(p + Vec3(10.0 + gap, 0, 0));
+  for (FaceIndices t : b.faces()) {
+    for (auto& v : t) v += off;
+    f.push_back(t);
+  }
+  return SurfaceMesh(x, f);
+}
+
+BoundaryChain facing_edge(const SurfaceMesh& m, double x, double y_from, double y_to) {
+  ChainSpec s;
+  s.from = Vec3(x, y_from, 0);
+  s.to = Vec3(x, y_to, 0);
+  return find_boundary_chain(m, s);
+}
+
+TEST(Join, TwoStripsWithEqualCountsMergePairwiseAtTheMean) {
+  const SurfaceMesh m = two_strips(4, 4);
+  // Right edge of strip 1 runs -y -> +y in the boundary direction; left edge of strip 2 +y -> -y.
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
+  ASSERT_EQ(a.vertices.size(), 5u);
+  const JoinResult r = join(m, {{a, b}});
+  ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+  EXPECT_EQ(r.mesh.num_vertices(), m.num_vertices() - 5);
+  EXPECT_EQ(r.mesh.boundary_loops().size(), 1u);
+  EXPECT_EQ(r.merged.size(), 5u);
+  for (const VertexId v : r.merged) {
+    EXPECT_NEAR(r.mesh.position(v).x(), 11.0, 1e-12);
+    EXPECT_EQ(r.maps.vertices[v.index()].kind, VertexOriginKind::Merged);
+    EXPECT_EQ(r.maps.vertices[v.index()].parents.size(), 2u);
+  }
+  EXPECT_EQ(r.sutures[0].inserted_a + r.sutures[0].inserted_b, 0);
+  EXPECT_NEAR(r.sutures[0].max_gap, 2.0, 1e-12);
+}
+
+TEST(Join, DifferentCountsRefineTheCoarserChainAndReportIt) {
+  const SurfaceMesh m = two_strips(4, 7);
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
+  const JoinResult r = join(m, {{a, b}});
+  ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+  EXPECT_EQ(r.sutures[0].vertices_a, 5u);
+  EXPECT_EQ(r.sutures[0].vertices_b, 8u);
+  EXPECT_EQ(r.sutures[0].inserted_a, 3);
+  EXPECT_EQ(r.sutures[0].inserted_b, 0);
+  EXPECT_EQ(r.seams[0].size(), 8u);
+  // Paired by arc length: the seam runs monotonically, and every merged vertex (the mean of
+  // its two copies) lies within a quarter of the finer spacing of a vertex of the finer side,
+  // i.e. partners are at most half a spacing apart.
+  for (std::size_t i = 0; i < r.seams[0].size(); ++i) {
+    const double y = r.mesh.position(r.seams[0][i]).y();
+    if (i > 0) EXPECT_GT(y, r.mesh.position(r.seams[0][i - 1]).y());  // chain a runs -y -> +y
+    const double k = (y + 2.0) / (4.0 / 7.0);
+    EXPECT_LE(std::abs(k - std::round(k)), 0.25 + 1e-9);
+  }
+}
+
+TEST(Join, MapsCarryARestStateThatIsStressFreeOnlyAfterCongruentY0) {
+  // The joined mesh with carried x0 is stressed (the gap is closed), which is what drives the
+  // relaxation; the mapping itself must not create any other stress.
+  auto model = make_corotational_shell();
+  Body body(two_strips(4, 4));
+  const BoundaryChain a = facing_edge(body.mesh, 10.0, -2, 2), b = facing_edge(body.mesh, 12.0, 2, -2);
+  const JoinResult r = join(body.mesh, {{a, b}});
+  body.apply(r.mesh, r.maps);
+  EXPECT_GT(testing::energy_and_force(*model, body).first, 1e-6);
+  body.rest = rest_from_state(body.mesh, body.state);
+  EXPECT_LT(testing::energy_and_force(*model, body).first, 1e-20);
+}
+
+TEST(Join, SlitReJoinedGivesTheOriginalTopologyAndPositions) {
+  const SurfaceMesh m = make_tube({4.0, 20.0, 24, 20});
+  const IncisionResult cut = incise(m, {Vec3(4, 0, 5), Vec3(0, 4, 14)}, {IncisionMode::SnapToEdges});
+  BoundaryChain left{cut.left, false};
+  BoundaryChain right{{cut.right.rbegin(), cut.right.rend()}, false};
+  const JoinResult r = join(cut.mesh, {{left, right}});
+  ASSERT_TRUE(r.mesh.validate().ok());
+  EXPECT_EQ(r.mesh.num_vertices(), m.num_vertices());
+  EXPECT_EQ(r.mesh.num_faces(), m.num_faces());
+  EXPECT_EQ(r.mesh.boundary_loops().size(), m.boundary_loops().size());
+  EXPECT_EQ(r.mesh.positions(), m.positions());
+  EXPECT_EQ(r.mesh.faces(), m.faces());
+}
+
+TEST(Join, PatchCornerMeetingTwoLipsAndAnotherChainIsAOneToThreeMapping) {
+  // Open a tube end with an incision, insert a triangular gusset, then suture the widened end
+  // loop to another tube's end: the gusset's base corners carry three rest positions.
+  const SurfaceMesh t1 = make_tube({3.0, 10.0, 24, 10});
+  const IncisionResult cut = incise(t1, {Vec3(3, 0, 10), Vec3(3, 0, 5)}, {IncisionMode::SnapToEdges});
+  PatchPlanParams pp;
+  pp.shape = PatchShape::Triangle;
+  pp.width = 2.0;
+  const PatchPlan plan = plan_patch(cut.mesh, Vec3(3, 0, 10), Vec3(3, 0, 5), pp);
+  // Host + patch as one mesh.
+  std::vector<Vec3> x = cut.mesh.positions();
+  std::vector<FaceIndices> f = cut.mesh.faces();
+  const int off = int(x.size());
+  for (const Vec3& p : plan.placed.positions()) x.push_back(p);
+  for (FaceIndices t : plan.placed.faces()) {
+    for (auto& v : t) v += off;
+    f.push_back(t);
+  }
+  const SurfaceMesh both(x, f);
+  auto shift = [&](BoundaryChain c) {
+    for (auto& v : c.vertices) v = VertexId(v.value + off);
+    return c;
+  };
+  const JoinResult j1 =
+      join(both, {{plan.lip_left, shift(plan.edge_left)}, {plan.lip_right, shift(plan.edge_right)}});
+  ASSERT_TRUE(j1.mesh.validate().ok()) << j1.mesh.validate().summary();
+  // Second tube in line; its z = 10 end loop is sutured to the widened z = 10 loop.
+  const SurfaceMesh t2 = make_tube({3.4, 10.0, 26, 10});
+  std::vector<Vec3> x2 = j1.mesh.positions();
+  std::vector<FaceIndices> f2 = j1.mesh.faces();
+  const int off2 = int(x2.size());
+  for (const Vec3& p : t2.positions()) x2.push_back(p + Vec3(0, 0, 10.5));
+  for (FaceIndices t : t2.faces()) {
+    for (auto& v : t) v += off2;
+    f2.push_back(t);
+  }
+  const SurfaceMesh joined(x2, f2);
+  ChainSpec end1, end2;
+  end1.loop = end2.loop = true;
+  end1.from = Vec3(-3, 0, 10);
+  end2.from = Vec3(-3.4, 0, 10.5);
+  const JoinResult j2 =
+      join(joined, {{find_boundary_chain(joined, end1), find_boundary_chain(joined, end2)}});
+  ASSERT_TRUE(j2.mesh.validate().ok()) << j2.mesh.validate().summary();
+  // Rest positions per simulated vertex: a parent from the first join counts its own copies,
+  // a vertex of the appended tube one.
+  std::size_t max_copies = 0;
+  for (const auto& o : j2.maps.vertices) {
+    std::size_t copies = 0;
+    for (const VertexId p : o.parents)
+      copies += p.value < off2 ? j1.maps.vertices[p.index()].parents.size() : 1;
+    max_copies = std::max(max_copies, copies);
+  }
+  EXPECT_EQ(max_copies, 3u);
+  EXPECT_EQ(j2.mesh.boundary_loops().size(), 2u);  // the two far ends
+}
+
+TEST(Join, RejectsBadChains) {
+  const SurfaceMesh m = two_strips(4, 4);
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
+  auto message = [&](const std::vector<SuturePair>& pairs) {
+    try {
+      join(m, pairs);
+    } catch (const InvalidArgument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({{a, a}}).find("overlaps"), std::string::npos);
+  BoundaryChain loop = boundary_chain(m, b.vertices.front(), b.vertices.front());
+  EXPECT_NE(message({{a, loop}}).find("closed loop"), std::string::npos);
+  BoundaryChain reversed{{a.vertices.rbegin(), a.vertices.rend()}, false};
+  EXPECT_NE(message({{reversed, b}}).find("boundary direction"), std::string::npos);
+  EXPECT_NE(message({}).find("at least one pair"), std::string::npos);
+}
+
+TEST(BoundaryChainSpec, ResolvesCoincidentLipsByViaPoint) {
+  const SurfaceMesh tube = make_tube({4.0, 20.0, 24, 20});
+  const IncisionResult cut = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 10)}, {IncisionMode::SnapToEdges});
+  ChainSpec s;
+  s.from = Vec3(4, 0, 0);
+  s.to = Vec3(4, 0, 10);
+  const BoundaryChain shortest = find_boundary_chain(cut.mesh, s);
+  EXPECT_EQ(shortest.vertices.size(), cut.left.size());
+  s.via = Vec3(-4, 0, 0);  // the far side of the end loop
+  const BoundaryChain around = find_boundary_chain(cut.mesh, s);
+  EXPECT_GT(around.vertices.size(), cut.left.size());
+  s.from = Vec3(4, 0, 30);
+  EXPECT_THROW(find_boundary_chain(cut.mesh, s), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace sutura::engine

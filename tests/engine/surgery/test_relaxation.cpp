@@ -1,0 +1,225 @@
+#include "sutura/engine/surgery/relaxation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "surgery_fixture.hpp"
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/sim/selection.hpp"
+#include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/join.hpp"
+
+namespace sutura::engine {
+namespace {
+
+using testing::Body;
+
+// Strips [0, 10] and [10 + gap, 20 + gap] along x, 4 wide: the paper's Fig. 2.3/2.4 set-up.
+SurfaceMesh two_strips(double gap) {
+  const SurfaceMesh a = make_strip({10.0, 4.0, 10, 4});
+  std::vector<Vec3> x = a.positions();
+  std::vector<FaceIndices> f = a.faces();
+  const int off = int(x.size());
+  for (const Vec3& p : a.positions()) x.push_back(p + Vec3(10.0 + gap, 0, 0));
+  for (FaceIndices t : a.faces()) {
+    for (auto& v : t) v += off;
+    f.push_back(t);
+  }
+  return SurfaceMesh(x, f);
+}
+
+// Relaxes `body` from a y0 congruent with its state (on the faces flagged) to its rest x0.
+RelaxationResult relax_body(Body& body, const ShellModel& model, const ShellMaterial& mat,
+                            const Loads& loads, const RelaxationParams& params,
+                            const std::vector<bool>& congruent) {
+  const RestState x0 = body.rest;
+  const RestState y0 = congruent_rest(body.mesh.faces(), body.state, x0, congruent);
+  RestState rest = y0;
+  const std::vector<ShellMaterial> mats{mat};
+  ShellSystem sys;
+  sys.model = &model;
+  sys.problem = ShellProblem{&body.mesh.faces(), &rest, &mats, &body.face_material,
+                             body.mesh.num_vertices()};
+  sys.constraints = body.constraints;
+  sys.fixed_loads = loads;
+  const RelaxationResult r = relax(sys, rest, y0, x0, body.state, params);
+  body.rest = rest;
+  return r;
+}
+
+// Far ends clamped, facing ends sutured.
+Body joined_strips(double gap) {
+  Body body(two_strips(gap));
+  const auto& X = body.mesh.positions();
+  const double span = 20.0 + gap;
+  body.constraints.fix(select_vertices(X, SelectPlaneBand{Vec3(0, 0, 0), Vec3(1, 0, 0), 1e-9}),
+                       kAllDofs, X.size());
+  body.constraints.fix(select_vertices(X, SelectPlaneBand{Vec3(span, 0, 0), Vec3(1, 0, 0), 1e-9}),
+                       kAllDofs, X.size());
+  ChainSpec a, b;
+  a.from = Vec3(10, -2, 0), a.to = Vec3(10, 2, 0);
+  b.from = Vec3(10 + gap, 2, 0), b.to = Vec3(10 + gap, -2, 0);
+  const JoinResult j =
+      join(body.mesh, {{find_boundary_chain(body.mesh, a), find_boundary_chain(body.mesh, b)}});
+  body.apply(j.mesh, j.maps);
+  return body;
+}
+
+// Theory for the fixed span S = 20 + gap with nu = 0: the rest length 20 is stretched
+// uniformly by S / 20, so a point at rest coordinate X of strip 1 sits at X S / 20 and one of
+// strip 2 at S - (S - X) S / 20, the seam in the middle.
+void expect_uniform_stretch(const Body& body, double gap, double tol) {
+  const double span = 20.0 + gap, stretch = span / 20.0;
+  for (std::size_t f = 0; f < body.mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 X = body.rest.elements[f].X[k];
+      const double expected = X.x() <= 10.0 + 1e-12 ? stretch * X.x() : span - stretch * (span - X.x());
+      const Vec3& x = body.state.x[body.mesh.faces()[f][k]];
+      EXPECT_NEAR(x.x(), expected, tol) << "face " << f << " corner " << k;
+      EXPECT_NEAR(x.y(), X.y(), tol);
+      EXPECT_NEAR(x.z(), 0.0, tol);
+    }
+}
+
+// Model 2 (St.Venant-Kirchhoff CST) reproduces a homogeneous stretch exactly. Model 1 is a
+// small-strain corotational element whose drilling rotations follow each triangle's frame:
+// under a stretch the frames of the alternating diagonals turn in opposite senses, and the
+// shared nodal drilling rotations leave a small in-plane coupling, measured at 2.4e-4 of the
+// seam's displacement (linear in the stretch), plus O(strain^2) frame effects. Model 1 is
+// therefore held to 1e-3 of the displacement at 0.5 % stretch.
+TEST(Relaxation, TwoStripsJoinedUnderFixedSpanStretchUniformlyModel1) {
+  auto model = make_corotational_shell();
+  const double gap = 0.1;
+  Body body = joined_strips(gap);
+  RelaxationParams p;
+  p.steps = 4;
+  const RelaxationResult r = relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                                        std::vector<bool>(body.mesh.num_faces(), true));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_DOUBLE_EQ(r.s_reached, 1.0);
+  ASSERT_EQ(r.history.size(), 5u);  // four increments of s, then the settling solve
+  EXPECT_DOUBLE_EQ(r.history[1].s, 0.5);
+  EXPECT_EQ(r.history.back().phase, "settle");
+  expect_uniform_stretch(body, gap, 1e-3 * gap / 2);
+  // Engineering strain gap / 20 over the rest area 2 x 40 mm^2: U = 1/2 E t A eps^2.
+  const double eps = gap / 20.0;
+  EXPECT_NEAR(r.energy, 0.5 * 1.0 * 0.2 * 80.0 * eps * eps, 1e-3 * r.energy);
+}
+
+TEST(Relaxation, TwoStripsJoinedUnderFixedSpanStretchUniformlyModel2) {
+  auto model = make_discrete_shell();
+  const double gap = 2.0;
+  Body body = joined_strips(gap);
+  RelaxationParams p;
+  p.steps = 4;
+  const RelaxationResult r = relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                                        std::vector<bool>(body.mesh.num_faces(), true));
+  ASSERT_TRUE(r.ok) << r.message;
+  expect_uniform_stretch(body, gap, 1e-6);
+  // St.Venant-Kirchhoff: Green strain (1.1^2 - 1) / 2 = 0.105.
+  EXPECT_NEAR(r.energy, 0.5 * 1.0 * 0.2 * 80.0 * 0.105 * 0.105, 1e-8);
+}
+
+TEST(Relaxation, DynamicSolverReachesTheSameEquilibrium) {
+  auto model = make_corotational_shell();
+  const double gap = 0.1;
+  Body body = joined_strips(gap);
+  RelaxationParams p;
+  p.solver = RelaxationSolver::Dynamic;
+  p.steps = 10;
+  p.settle_steps = 5;
+  p.dynamics.dt = 0.05;
+  p.dynamics.mass_damping = 20.0;
+  const RelaxationResult r = relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                                        std::vector<bool>(body.mesh.num_faces(), true));
+  ASSERT_TRUE(r.ok) << r.message;
+  expect_uniform_stretch(body, gap, 1e-3 * gap / 2);  // Model 1: see above
+}
+
+TEST(Relaxation, PartialRelaxationStopsAtTheRequestedS) {
+  auto model = make_discrete_shell();
+  Body body = joined_strips(2.0);
+  RelaxationParams p;
+  p.steps = 2;
+  p.s_end = 0.5;
+  const RelaxationResult r = relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                                        std::vector<bool>(body.mesh.num_faces(), true));
+  ASSERT_TRUE(r.ok);
+  EXPECT_DOUBLE_EQ(r.s_reached, 0.5);
+  // Half-way: the rest shape is half-way, so the strips carry less than the final energy.
+  EXPECT_GT(r.energy, 0.0);
+  EXPECT_LT(r.energy, 0.5 * 1.0 * 0.2 * 80.0 * 0.105 * 0.105);
+}
+
+TEST(Relaxation, SlitOpenedUnderPressureAndReJoinedReturnsToTheIntactShape) {
+  auto model = make_corotational_shell();
+  ShellMaterial mat = testing::soft_material(0.3);
+  Loads pressure;
+  pressure.pressures.push_back(PressureLoad{{}, 0.001});  // along the outward normals: inflate
+  auto clamp_ends = [](Body& b) {
+    const auto& X = b.mesh.positions();
+    b.constraints.fix(select_vertices(X, SelectPlaneBand{Vec3(0, 0, 0), Vec3(0, 0, 1), 1e-9}),
+                      kAllDofs, X.size());
+    b.constraints.fix(select_vertices(X, SelectPlaneBand{Vec3(0, 0, 20), Vec3(0, 0, 1), 1e-9}),
+                      kAllDofs, X.size());
+  };
+  auto solve = [&](Body& b) -> bool {
+    const std::vector<ShellMaterial> mats{mat};
+    ShellSystem sys;
+    sys.model = model.get();
+    sys.problem = ShellProblem{&b.mesh.faces(), &b.rest, &mats, &b.face_material, b.mesh.num_vertices()};
+    sys.constraints = b.constraints;
+    sys.loads = pressure;
+    StaticSolverParams sp;
+    sp.load_steps = 2;
+    const StaticResult r = solve_static(sys, b.state, sp);
+    EXPECT_TRUE(r.converged) << r.message;
+    return r.converged;
+  };
+  Body intact(make_tube({4.0, 20.0, 24, 20}));
+  clamp_ends(intact);
+  ASSERT_TRUE(solve(intact));
+
+  Body cut(make_tube({4.0, 20.0, 24, 20}));
+  clamp_ends(cut);
+  const IncisionResult inc = incise(cut.mesh, {Vec3(4, 0, 6), Vec3(4, 0, 14)}, {IncisionMode::SnapToEdges});
+  cut.apply(inc.mesh, inc.maps);
+  ASSERT_TRUE(solve(cut));
+  // The slit gapes under pressure.
+  const double gap = (cut.state.x[inc.left[4].index()] - cut.state.x[inc.right[4].index()]).norm();
+  EXPECT_GT(gap, 0.05);
+  cut.mesh.set_positions(cut.state.x);
+  const JoinResult j = join(cut.mesh, {{BoundaryChain{inc.left, false},
+                                        BoundaryChain{{inc.right.rbegin(), inc.right.rend()}, false}}});
+  cut.apply(j.mesh, j.maps);
+  std::vector<bool> touched(cut.mesh.num_faces(), false);
+  for (const VertexId v : j.merged)
+    for (const FaceId f : cut.mesh.vertex_faces(v)) touched[f.index()] = true;
+  RelaxationParams p;
+  p.steps = 5;
+  const RelaxationResult r = relax_body(cut, *model, mat, pressure, p, touched);
+  ASSERT_TRUE(r.ok) << r.message;
+  ASSERT_EQ(cut.state.x.size(), intact.state.x.size());
+  double worst = 0.0;
+  std::size_t at = 0;
+  for (std::size_t v = 0; v < cut.state.x.size(); ++v)
+    if ((cut.state.x[v] - intact.state.x[v]).norm() > worst) {
+      worst = (cut.state.x[v] - intact.state.x[v]).norm();
+      at = v;
+    }
+  EXPECT_LT(worst, 1e-6) << "vertex " << at << " at " << cut.state.x[at].transpose()
+                         << " instead of " << intact.state.x[at].transpose();
+}
+
+TEST(Relaxation, RejectsBadParameters) {
+  auto model = make_corotational_shell();
+  Body body = joined_strips(2.0);
+  RelaxationParams p;
+  p.steps = 0;
+  EXPECT_THROW(relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                          std::vector<bool>(body.mesh.num_faces(), true)),
+               InvalidArgument);
+  EXPECT_THROW(parse_relaxation_solver("explicit"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace sutura::engine
