@@ -10,6 +10,7 @@ PACKAGES=(
   libosmesa6-dev libgl-dev libglfw3-dev
   libimgui-dev
   libassimp-dev
+  libcgal-dev libboost-dev libgmp-dev libmpfr-dev
   libstb-dev
   nlohmann-json3-dev
   libcli11-dev
