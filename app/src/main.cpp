@@ -1,12 +1,16 @@
 // sutura — command-line entry point. Subcommands:
 //   replay SESSION --out DIR   run a recorded planning session headlessly
 //   info MESH                  load a mesh file and print its topology summary
+//   generate arch --out DIR    write the synthetic infant aortic arch and its landmarks
+//   gui [SESSION]              the interactive planning window (records a session)
 // Exit codes: 0 success, 1 the session or mesh failed (message on stderr), other non-zero
 // codes for command-line usage errors (from CLI11).
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
+#include "generate_command.hpp"
+#include "gui_command.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/errors.hpp"
@@ -76,10 +80,17 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.01));
 
+  sutura::app::GenerateArchOptions arch_options;
+  auto* arch = sutura::app::add_generate_command(app, arch_options);
+  sutura::ui::GuiOptions gui_options;
+  auto* gui = sutura::app::add_gui_command(app, gui_options);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*replay) return run_replay(session_file, out_dir, quiet);
     if (*info) return run_info(mesh_file, weld);
+    if (*arch) return sutura::app::run_generate_arch(arch_options);
+    if (*gui) return sutura::ui::run_gui(gui_options);
   } catch (const std::exception& e) {
     std::cerr << "sutura: error: " << e.what() << "\n";
     return 1;

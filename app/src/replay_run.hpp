@@ -9,6 +9,7 @@
 
 #include "snapshot.hpp"
 #include "sutura/app/replay.hpp"
+#include "sutura/app/simulation.hpp"
 
 namespace sutura::app::detail {
 
@@ -24,6 +25,12 @@ struct Run {
   json outputs = json::array();
   json probes = json::object();
   json checks = json::array();
+  json measurements = json::object();
+  // Undo/redo: the workspace before each change (edits, constraints, loads, runs).
+  std::vector<Workspace> undo_stack;
+  std::vector<Workspace> redo_stack;
+  /// Pushes the current workspace for undo and clears redo; called by every changing op.
+  void remember();
 
   // Output bookkeeping and the report (replay_scene_ops.cpp).
   std::filesystem::path output(const std::filesystem::path& relative);
@@ -52,8 +59,23 @@ struct Run {
   json execute(const BodyForceOp& op);
   json execute(const SolveOp& op);
   json execute(const SimulateOp& op);
+  /// Passes a long op's progress (step of steps, current merged positions `x`) to
+  /// options.on_progress; false when the caller asks to cancel.
+  bool report_progress(const std::string& phase, int step, int steps, const MergedSystem& merged,
+                       const std::vector<engine::Vec3>& x);
   json execute(const ProbeOp& op);
   json execute(const CheckOp& op);
+
+  // Surgery ops (replay_surgery_ops.cpp).
+  json execute(const InciseOp& op);
+  json execute(const JoinOp& op);
+  json execute(const PatchOp& op);
+  json execute(const ResectOp& op);
+  json execute(const MeasureOp& op);
+  json execute(const UndoOp& op);
+  json execute(const RedoOp& op);
+  /// Simulate with rest-shape relaxation of the objects' pending sutures.
+  json relax(const SimulateOp& op);
 };
 
 }  // namespace sutura::app::detail

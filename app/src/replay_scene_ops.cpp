@@ -1,5 +1,6 @@
 // Execution of the scene ops (generate, load, snapshot, export, report) and the report.
 #include "replay_run.hpp"
+#include "surgery_edits.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
@@ -35,6 +36,7 @@ json Run::report(const std::string& status, const std::string& error, double tot
             {"outputs", outputs},
             {"probes", probes},
             {"checks", checks},
+            {"measurements", measurements},
             {"total_seconds", total}};
   if (!error.empty()) r["error"] = error;
   return r;
@@ -45,6 +47,7 @@ void Run::write_report(const fs::path& relative, const json& r) {
 }
 
 json Run::execute(const GenerateOp& op) {
+  remember();
   engine::SurfaceMesh mesh = std::visit(
       [](const auto& p) -> engine::SurfaceMesh {
         using P = std::decay_t<decltype(p)>;
@@ -61,12 +64,20 @@ json Run::execute(const GenerateOp& op) {
     for (auto& p : moved) p += t;
     mesh.set_positions(std::move(moved));
   }
+  if (op.append) {
+    SceneObject& obj = object(op.object);
+    detail::append_component(obj, mesh, mesh, obj.sim.materials.front());
+    obj.before = obj.mesh;  // the new part is part of the pre-operative scene
+    return {{"object", op.object}, {"appended", true}, {"vertices", obj.mesh.num_vertices()},
+            {"faces", obj.mesh.num_faces()}};
+  }
   const auto& obj = workspace.add(op.object, std::move(mesh));
   return {{"object", op.object}, {"vertices", obj.mesh.num_vertices()},
           {"faces", obj.mesh.num_faces()}};
 }
 
 json Run::execute(const LoadOp& op) {
+  remember();
   engine::ImportOptions io;
   io.weld_tolerance = op.weld_tolerance;
   const auto& obj = workspace.add(op.object, engine::load_mesh(op.file, io));

@@ -1,5 +1,6 @@
 // Execution of the simulation ops (material, constrain, loads, solve, simulate, probe, check).
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -30,7 +31,19 @@ std::vector<engine::VertexId> Run::resolve(const SceneObject& obj, const VertexS
   if (sel.engine) return engine::select_vertices(obj.mesh.positions(), *sel.engine);
   const auto loops = obj.mesh.boundary_loops();
   std::vector<engine::VertexId> ids;
-  std::vector<int> wanted = *sel.boundary_loops;
+  std::vector<int> wanted;
+  if (sel.boundary_loops) wanted = *sel.boundary_loops;
+  for (const engine::Vec3& p : sel.boundary_near) {
+    int best = -1;
+    double d = std::numeric_limits<double>::infinity();
+    for (std::size_t l = 0; l < loops.size(); ++l)
+      for (const auto v : loops[l])
+        if ((obj.mesh.position(v) - p).norm() < d) d = (obj.mesh.position(v) - p).norm(), best = int(l);
+    if (best < 0) throw std::runtime_error("object '" + obj.name + "' has no boundary");
+    wanted.push_back(best);
+  }
+  if (!sel.boundary_near.empty() && wanted.empty())
+    throw std::runtime_error("object '" + obj.name + "' has no boundary");
   if (wanted.empty())
     for (std::size_t i = 0; i < loops.size(); ++i) wanted.push_back(static_cast<int>(i));
   for (int i : wanted) {
@@ -57,6 +70,7 @@ std::vector<SceneObject*> Run::objects_named(const std::vector<std::string>& nam
 }
 
 json Run::execute(const MaterialOp& op) {
+  remember();
   engine::validate(op.material);
   SceneObject& obj = object(op.object);
   obj.sim.materials = {op.material};
@@ -65,6 +79,7 @@ json Run::execute(const MaterialOp& op) {
 }
 
 json Run::execute(const ConstrainOp& op) {
+  remember();
   SceneObject& obj = object(op.object);
   const auto ids = resolve(obj, op.where);
   obj.sim.constraints.fix(ids, op.dofs, obj.mesh.num_vertices());
@@ -72,6 +87,7 @@ json Run::execute(const ConstrainOp& op) {
 }
 
 json Run::execute(const ForceOp& op) {
+  remember();
   SceneObject& obj = object(op.object);
   const auto ids = resolve(obj, op.where);
   const double share = op.per_node ? 1.0 : 1.0 / static_cast<double>(ids.size());
@@ -81,6 +97,7 @@ json Run::execute(const ForceOp& op) {
 }
 
 json Run::execute(const LineLoadOp& op) {
+  remember();
   SceneObject& obj = object(op.object);
   const auto ids = resolve(obj, op.where);
   const auto chain = boundary_chain(obj, ids);
@@ -90,12 +107,14 @@ json Run::execute(const LineLoadOp& op) {
 }
 
 json Run::execute(const PressureOp& op) {
+  remember();
   SceneObject& obj = object(op.object);
   obj.sim.pending_loads.pressures.push_back({{}, op.pressure});
   return {{"object", op.object}};
 }
 
 json Run::execute(const BodyForceOp& op) {
+  remember();
   SceneObject& obj = object(op.object);
   if (op.per_area) {
     obj.sim.pending_loads.body_force_per_area += *op.per_area;
@@ -115,6 +134,7 @@ json Run::execute(const BodyForceOp& op) {
 }
 
 json Run::execute(const SolveOp& op) {
+  remember();
   const auto objs = objects_named(op.objects);
   double start = 0.0;
   for (SceneObject* o : objs) start = std::max(start, o->sim.pending_factor);
@@ -145,14 +165,23 @@ json Run::execute(const SolveOp& op) {
 }
 
 json Run::execute(const SimulateOp& op) {
+  remember();
+  if (op.relax) return relax(op);
   const auto objs = objects_named(op.objects);
   const auto model = make_model(op.model);
-  MergedSystem merged(objs, *model);
+  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr);
   engine::DynamicsState ds{merged.state(), merged.velocity()};
-  const engine::DynamicsResult r = engine::simulate_dynamics(merged.system(), ds, op.params);
+  bool cancelled = false;
+  const engine::StepHook hook = [&](int step) {
+    cancelled = !report_progress("simulate", step, op.params.steps, merged, ds.shell.x);
+    return !cancelled;
+  };
+  const engine::DynamicsResult r = engine::simulate_dynamics(merged.system(), ds, op.params, hook);
   merged.state() = ds.shell;
   merged.velocity() = ds.velocity;
   merged.write_back();
+  if (cancelled) throw OpCancelled("cancelled after " + std::to_string(r.steps_done) + " of " +
+                                   std::to_string(op.params.steps) + " steps");
   if (!r.ok) throw std::runtime_error(r.message);
   for (SceneObject* o : objs) commit_pending_loads(*o);
   return {{"model", model->name()}, {"steps", r.steps_done},
@@ -160,17 +189,84 @@ json Run::execute(const SimulateOp& op) {
           {"strain_energy", r.strain_energy}, {"residual", r.residual}};
 }
 
+json Run::relax(const SimulateOp& op) {
+  const auto objs = objects_named(op.objects);
+  double s_start = 0.0;
+  bool pending = false;
+  for (const SceneObject* o : objs)
+    if (o->sim.relax_from) {
+      pending = true;
+      s_start = std::max(s_start, o->sim.relax_s);
+    }
+  if (!pending)
+    throw std::runtime_error("nothing to relax: no suture since the last relaxation (use "
+                             "simulate without relax to settle)");
+  engine::RelaxationParams params = *op.relax;
+  params.s_start = s_start;
+  if (params.s_end < s_start)
+    throw std::runtime_error("relax.until " + std::to_string(params.s_end) +
+                             " is below the relaxation already reached (" +
+                             std::to_string(s_start) + ")");
+  const auto model = make_model(op.model);
+  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr);
+  const engine::RestState y0 = merged.relax_from();
+  const engine::RestState x0 = merged.rest();
+  merged.rest() = engine::rest_at(y0, x0, s_start);
+  bool cancelled = false;
+  const engine::RelaxationHook hook = [&](const engine::RelaxationProgress& p) {
+    cancelled = !report_progress(p.phase, p.step, p.steps, merged, merged.state().x);
+    return !cancelled;
+  };
+  const engine::RelaxationResult r =
+      engine::relax(merged.system(), merged.rest(), y0, x0, merged.state(), params, hook);
+  merged.velocity().setZero();
+  merged.write_back();
+  for (SceneObject* o : objs) {
+    if (!o->sim.relax_from) continue;
+    if (r.s_reached >= 1.0) {
+      o->sim.relax_from.reset();
+      o->sim.relax_s = 0.0;
+    } else {
+      o->sim.relax_s = r.s_reached;
+    }
+  }
+  if (cancelled) throw OpCancelled("relaxation cancelled at s = " + std::to_string(r.s_reached));
+  if (!r.ok) throw std::runtime_error(r.message);
+  for (SceneObject* o : objs) commit_pending_loads(*o);
+  json history = json::array();
+  for (const auto& h : r.history)
+    history.push_back({{"s", h.s}, {"phase", h.phase}, {"residual", h.residual}, {"energy", h.energy}});
+  return {{"model", model->name()},
+          {"relaxation", params.solver == engine::RelaxationSolver::Static ? "static" : "dynamic"},
+          {"s_reached", r.s_reached},
+          {"newton_iterations", r.newton_iterations},
+          {"residual", r.residual},
+          {"energy", r.energy},
+          {"history", history}};
+}
+
+bool Run::report_progress(const std::string& phase, int step, int steps,
+                          const MergedSystem& merged, const std::vector<engine::Vec3>& x) {
+  if (!options.on_progress) return true;
+  RunProgress p;
+  p.phase = phase;
+  p.step = step;
+  p.steps = steps;
+  p.fraction = steps > 0 ? static_cast<double>(step) / steps : 0.0;
+  p.positions = merged.positions_by_object(x);
+  return options.on_progress(p);
+}
+
 json Run::execute(const ProbeOp& op) {
   SceneObject& obj = object(op.object);
-  if (obj.before.num_vertices() != obj.mesh.num_vertices())
-    throw std::runtime_error("probe needs object '" + op.object +
-                             "' to have the vertices it had when created");
-  const auto v = engine::select_vertices(obj.before.positions(),
-                                         engine::SelectNearest{{op.point}})[0];
-  const engine::Vec3 u = obj.mesh.position(v) - obj.before.position(v);
+  // Vertices are found and measured from where their material points were before the
+  // operation (carried across incisions and sutures).
+  const auto& reference = obj.sim.reference;
+  const auto v = engine::select_vertices(reference, engine::SelectNearest{{op.point}})[0];
+  const engine::Vec3 u = obj.mesh.position(v) - reference[v.index()];
   const Eigen::AngleAxisd aa(obj.sim.state.D[v.index()]);
   const engine::Vec3 rot = aa.angle() * aa.axis();
-  const engine::Vec3& at = obj.before.position(v);
+  const engine::Vec3& at = reference[v.index()];
   json j = {{"object", op.object},  {"vertex", v.value},
             {"reference", {at.x(), at.y(), at.z()}},
             {"ux", u.x()}, {"uy", u.y()}, {"uz", u.z()}, {"|u|", u.norm()},

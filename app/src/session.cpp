@@ -40,11 +40,43 @@ SessionError::SessionError(std::string file, int line, std::string op, std::stri
 const std::vector<std::string>& known_ops() {
   static const std::vector<std::string> ops = [] {
     std::vector<std::string> names;
-    for (const auto* family : {&detail::scene_op_parsers(), &detail::simulation_op_parsers()})
+    for (const auto* family : {&detail::scene_op_parsers(), &detail::simulation_op_parsers(),
+                                &detail::surgery_op_parsers()})
       for (const auto& p : *family) names.emplace_back(p.name);
     return names;
   }();
   return ops;
+}
+
+Action parse_action(const json& j, const std::filesystem::path& file, int line_no) {
+  const std::string fname = file.string();
+  if (!j.is_object()) throw SessionError(fname, line_no, "", "", "each line must be a JSON object");
+  if (!j.contains("op")) throw SessionError(fname, line_no, "", "op", "missing");
+  if (!j["op"].is_string()) throw SessionError(fname, line_no, "", "op", "must be a string");
+  const std::string name = j["op"].get<std::string>();
+  Fields f(j, fname, line_no, name);
+  f.required_string("op");
+  f.optional_string("note", "");  // free text for the reader of the session
+  Action action;
+  action.line = line_no;
+  action.name = name;
+  try {
+    const detail::OpParser* parser = nullptr;
+    for (const auto* family : {&detail::scene_op_parsers(), &detail::simulation_op_parsers(),
+                                &detail::surgery_op_parsers()})
+      for (const auto& p : *family)
+        if (name == p.name) parser = &p;
+    if (parser == nullptr) {
+      std::string list;
+      for (const auto& o : known_ops()) list += (list.empty() ? "" : ", ") + o;
+      throw SessionError(fname, line_no, name, "op", "unknown op (known: " + list + ")");
+    }
+    action.op = parser->parse(f, file);
+  } catch (const engine::InvalidArgument& e) {
+    throw SessionError(fname, line_no, name, "", e.what());
+  }
+  f.finish();
+  return action;
 }
 
 Session parse_session(const std::string& text, const std::filesystem::path& file) {
@@ -86,31 +118,7 @@ Session parse_session(const std::string& text, const std::filesystem::path& file
       continue;
     }
 
-    if (!j.contains("op")) throw SessionError(fname, line_no, "", "op", "missing");
-    if (!j["op"].is_string()) throw SessionError(fname, line_no, "", "op", "must be a string");
-    const std::string name = j["op"].get<std::string>();
-    Fields f(j, fname, line_no, name);
-    f.required_string("op");
-    f.optional_string("note", "");  // free text for the reader of the session
-    Action action;
-    action.line = line_no;
-    action.name = name;
-    try {
-      const detail::OpParser* parser = nullptr;
-      for (const auto* family : {&detail::scene_op_parsers(), &detail::simulation_op_parsers()})
-        for (const auto& p : *family)
-          if (name == p.name) parser = &p;
-      if (parser == nullptr) {
-        std::string list;
-        for (const auto& o : known_ops()) list += (list.empty() ? "" : ", ") + o;
-        throw SessionError(fname, line_no, name, "op", "unknown op (known: " + list + ")");
-      }
-      action.op = parser->parse(f, file);
-    } catch (const engine::InvalidArgument& e) {
-      throw SessionError(fname, line_no, name, "", e.what());
-    }
-    f.finish();
-    session.actions.push_back(std::move(action));
+    session.actions.push_back(parse_action(j, file, line_no));
   }
   if (!have_header) throw SessionError(fname, 0, "", "", "empty session: no header line");
   return session;

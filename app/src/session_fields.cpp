@@ -142,6 +142,21 @@ std::optional<Fields> Fields::optional_object(const std::string& key) {
   return nested;
 }
 
+std::vector<Fields> Fields::object_list(const std::string& key) {
+  if (!has(key)) fail(key, "missing (an array of objects is required)");
+  const json& v = take(key);
+  if (!v.is_array() || v.empty()) fail(key, "must be a non-empty array of objects");
+  std::vector<Fields> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string name = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_object()) fail(name, "must be an object, got " + type_name(v[i]));
+    Fields nested(v[i], file_, line_, op_);
+    nested.prefix_ = qualified(name) + ".";
+    out.push_back(std::move(nested));
+  }
+  return out;
+}
+
 const json* Fields::raw(const std::string& key) {
   if (!has(key)) return nullptr;
   return &take(key);

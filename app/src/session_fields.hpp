@@ -36,6 +36,9 @@ class Fields {
   /// A nested object, checked with its own Fields (its errors say "camera.eye" etc.).
   std::optional<Fields> optional_object(const std::string& key);
 
+  /// A required non-empty array of objects, each checked with its own Fields (errors say
+  /// "sutures[1].a.from" etc.). Call finish() on each.
+  std::vector<Fields> object_list(const std::string& key);
   /// The raw value of an optional field (marked as used), or nullptr.
   const nlohmann::json* raw(const std::string& key);
   /// An array of 3-vectors.

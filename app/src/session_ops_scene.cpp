@@ -10,6 +10,7 @@ namespace {
 GenerateOp parse_generate(Fields& f) {
   GenerateOp op;
   op.object = object_name(f);
+  op.append = f.optional_bool("append", false);
   const std::string shape =
       f.optional_choice("shape", "", {"tube", "strip", "cylinder_panel", "ellipse", "diamond", "triangle"});
   if (shape.empty())
@@ -112,6 +113,9 @@ SnapshotOp parse_snapshot(Fields& f) {
   op.side_by_side = f.optional_bool("side_by_side", op.side_by_side);
   op.wireframe = f.optional_bool("wireframe", op.wireframe);
   op.boundaries = f.optional_bool("boundaries", op.boundaries);
+  op.marks = f.optional_bool("marks", op.marks);
+  op.compare_rest = f.optional_choice("compare", "before", {"before", "rest"}) == "rest";
+  if (op.compare_rest && !op.side_by_side) f.fail("compare", "needs side_by_side: true");
   return op;
 }
 

@@ -9,12 +9,18 @@ namespace {
 
 // Exactly one of: vertices, nearest, box, plane, boundary.
 VertexSelection parse_selection(Fields& f) {
-  const std::vector<std::string> keys = {"vertices", "nearest", "box", "plane", "boundary"};
+  const std::vector<std::string> keys = {"vertices", "nearest", "box", "plane", "boundary",
+                                         "boundary_near"};
   int count = 0;
   for (const auto& k : keys) count += f.has(k) ? 1 : 0;
   if (count != 1)
-    f.fail("", "give exactly one vertex selection: vertices, nearest, box, plane or boundary");
+    f.fail("", "give exactly one vertex selection: vertices, nearest, box, plane, boundary or "
+               "boundary_near");
   VertexSelection sel;
+  if (f.has("boundary_near")) {
+    for (const auto& p : f.vec3_list("boundary_near")) sel.boundary_near.push_back(vec(p));
+    return sel;
+  }
   if (const auto* v = f.raw("vertices")) {
     engine::SelectIds ids;
     if (!v->is_array() || v->empty()) f.fail("vertices", "must be a non-empty array of vertex ids");
@@ -82,6 +88,9 @@ ConstrainOp parse_constrain(Fields& f) {
   op.dofs = dofs.empty() ? engine::kAllDofs : engine::parse_dofs(dofs);
   return op;
 }
+
+// `fix`: a constraint on all six DOFs unless `dofs` says otherwise (holding vessel ends).
+ConstrainOp parse_fix(Fields& f) { return parse_constrain(f); }
 
 ForceOp parse_force(Fields& f) {
   ForceOp op;
@@ -157,6 +166,31 @@ SimulateOp parse_simulate(Fields& f) {
   if (p.tolerance >= 1.0) f.fail("tolerance", "must be below 1");
   p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 1000);
   p.linear_solver = linear_solver(f, p.linear_solver);
+  if (auto r = f.optional_object("relax")) {
+    engine::RelaxationParams rp;
+    rp.solver = engine::parse_relaxation_solver(
+        r->optional_choice("solver", "static", {"static", "dynamic"}));
+    rp.steps = r->optional_int("steps", rp.steps, 1, 1000000);
+    rp.s_end = r->optional_number("until", 1.0);
+    if (!(rp.s_end > 0.0 && rp.s_end <= 1.0)) r->fail("until", "must be in (0, 1]");
+    rp.settle = r->optional_bool("settle", rp.settle);
+    rp.settle_steps = r->optional_int("settle_steps", rp.settle_steps, 0, 1000000);
+    rp.statics.tolerance = r->optional_positive("tolerance", rp.statics.tolerance);
+    if (rp.statics.tolerance >= 1.0) r->fail("tolerance", "must be below 1");
+    rp.statics.max_iterations =
+        r->optional_int("max_iterations", rp.statics.max_iterations, 1, 1000);
+    rp.statics.linear_solver = p.linear_solver;
+    rp.dynamics = p;
+    r->finish();
+    op.relax = rp;
+  }
+  if (auto c = f.optional_object("contact")) {
+    engine::ContactParams cp;
+    cp.distance = c->optional_positive("distance", cp.distance);
+    cp.stiffness = c->optional_positive("stiffness", cp.stiffness);
+    c->finish();
+    op.contact = cp;
+  }
   return op;
 }
 
@@ -189,6 +223,7 @@ const std::vector<OpParser>& simulation_op_parsers() {
   static const std::vector<OpParser> parsers = {
       {"material", [](Fields& f, const std::filesystem::path&) -> Op { return parse_material(f); }},
       {"constrain", [](Fields& f, const std::filesystem::path&) -> Op { return parse_constrain(f); }},
+      {"fix", [](Fields& f, const std::filesystem::path&) -> Op { return parse_fix(f); }},
       {"force", [](Fields& f, const std::filesystem::path&) -> Op { return parse_force(f); }},
       {"line_load", [](Fields& f, const std::filesystem::path&) -> Op { return parse_line_load(f); }},
       {"pressure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_pressure(f); }},

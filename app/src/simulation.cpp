@@ -33,15 +33,18 @@ void append_loads(engine::Loads& into, const engine::Loads& from, std::size_t no
 }  // namespace
 
 MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
-                           const engine::ShellModel& model)
+                           const engine::ShellModel& model, const engine::ContactParams* contact)
     : objects_(objects) {
   if (objects.empty()) throw std::invalid_argument("nothing to simulate: no objects");
   std::size_t nodes = 0;
+  std::vector<engine::ContactSurface> surfaces;
   // A body force is per object, but the merged system has one Loads::body_force_per_area:
   // each object's body force is converted to nodal loads on its own rest areas instead.
   for (SceneObject* o : objects) {
     node_offset_.push_back(nodes);
     const std::size_t face_offset = faces_.size();
+    engine::ContactSurface& surface = surfaces.emplace_back();
+    for (std::size_t f = 0; f < o->mesh.num_faces(); ++f) surface.faces.emplace_back(face_offset + f);
     const auto mat_offset = static_cast<int>(materials_.size());
     for (const auto& f : o->mesh.faces())
       faces_.push_back({f[0] + static_cast<int>(nodes), f[1] + static_cast<int>(nodes),
@@ -84,6 +87,10 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
   system_.problem.materials = &materials_;
   system_.problem.face_material = &face_material_;
   system_.problem.num_nodes = nodes;
+  if (contact != nullptr && objects.size() >= 2) {
+    contact_ = std::make_unique<engine::ContactTerm>(system_.problem, surfaces, *contact);
+    system_.terms.push_back(contact_.get());
+  }
 
   velocity_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nodes * d));
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -104,6 +111,26 @@ void MergedSystem::write_back() {
                                         static_cast<Eigen::Index>(n * d));
     o->mesh.set_positions(o->sim.state.x);
   }
+}
+
+engine::RestState MergedSystem::relax_from() const {
+  engine::RestState y0;
+  y0.elements.reserve(rest_.elements.size());
+  for (const SceneObject* o : objects_) {
+    const engine::RestState& r = o->sim.relax_from ? *o->sim.relax_from : o->sim.rest;
+    y0.elements.insert(y0.elements.end(), r.elements.begin(), r.elements.end());
+  }
+  return y0;
+}
+
+std::vector<std::pair<std::string, std::span<const engine::Vec3>>> MergedSystem::positions_by_object(
+    const std::vector<engine::Vec3>& x) const {
+  std::vector<std::pair<std::string, std::span<const engine::Vec3>>> out;
+  for (std::size_t i = 0; i < objects_.size(); ++i)
+    out.emplace_back(objects_[i]->name,
+                     std::span<const engine::Vec3>(x).subspan(node_offset_[i],
+                                                              objects_[i]->mesh.num_vertices()));
+  return out;
 }
 
 }  // namespace sutura::app

@@ -1,5 +1,7 @@
 #include "snapshot.hpp"
 
+#include "sutura/engine/surgery/relaxation.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -22,16 +24,30 @@ struct ObjectArrays {
   std::vector<std::uint32_t> triangles;
   std::vector<float> scalars;
   std::vector<std::vector<render::Point3>> loops;
+  std::vector<std::vector<render::Point3>> incisions, sutures;
   render::Color color{};
 };
 
+std::vector<render::Point3> polyline(const engine::SurfaceMesh& mesh,
+                                     const std::vector<engine::VertexId>& chain) {
+  std::vector<render::Point3> pts;
+  pts.reserve(chain.size());
+  for (const auto v : chain) {
+    if (v.index() >= mesh.num_vertices()) continue;
+    const auto& p = mesh.position(v);
+    pts.push_back({float(p.x()), float(p.y()), float(p.z())});
+  }
+  return pts;
+}
+
 // Per-element measures of Model 1 (the default shell model) averaged to the vertices with
-// face-area weights. The current state uses the simulated nodal rotations; the before-state
-// is taken with identity rotations (it is the stress-free reference of a fresh object).
+// face-area weights, for the current state with its simulated nodal rotations. The
+// before-state is the stress-free reference of the object as created: zero everywhere (its
+// topology may differ from today's after incisions and sutures).
 std::vector<float> element_field(Field field, const SceneObject& obj,
                                  const engine::SurfaceMesh& state) {
-  const bool current = &state == &obj.mesh;
-  const engine::ShellState s = current ? obj.sim.state : engine::state_from_mesh(state);
+  if (&state != &obj.mesh) return std::vector<float>(state.num_vertices(), 0.0f);
+  const engine::ShellState& s = obj.sim.state;
   const auto model = engine::make_corotational_shell();
   const engine::ShellProblem problem{&state.faces(), &obj.sim.rest, &obj.sim.materials,
                                      &obj.sim.face_material, state.num_vertices()};
@@ -65,10 +81,10 @@ std::vector<float> field_values(Field field, const SceneObject& obj,
       case Field::Y: v[i] = static_cast<float>(p.y()); break;
       case Field::Z: v[i] = static_cast<float>(p.z()); break;
       case Field::Displacement: {
-        if (obj.before.num_vertices() != state.num_vertices())
-          throw std::runtime_error("field 'displacement' needs object '" + obj.name +
-                                   "' to have the vertices it had when created");
-        v[i] = static_cast<float>((p - obj.before.positions()[i]).norm());
+        // From where the material point was before the operation (carried across edits);
+        // the before-state has not moved.
+        const bool current = &state == &obj.mesh && obj.sim.reference.size() == v.size();
+        v[i] = current ? static_cast<float>((p - obj.sim.reference[i]).norm()) : 0.0f;
         break;
       }
       default: break;
@@ -94,7 +110,28 @@ ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
       a.loops.push_back(std::move(pts));
     }
   }
+  if (op.marks && &state == &obj.mesh) {
+    for (const auto& c : obj.marks.incisions) a.incisions.push_back(polyline(state, c));
+    for (const auto& c : obj.marks.sutures) a.sutures.push_back(polyline(state, c));
+  }
   a.color = color;
+  return a;
+}
+
+// The rest shape the solver sees now (y0 part-way to x0 during a relaxation), one separate
+// triangle per element: split edges stay visible (paper, Fig. 2.4).
+ObjectArrays rest_arrays(const SnapshotOp& op, const SceneObject& obj, render::Color color) {
+  const engine::RestState rest =
+      obj.sim.relax_from ? engine::rest_at(*obj.sim.relax_from, obj.sim.rest, obj.sim.relax_s)
+                         : obj.sim.rest;
+  ObjectArrays a;
+  a.positions.reserve(9 * rest.elements.size());
+  for (const auto& e : rest.elements)
+    for (const auto& x : e.X)
+      for (int k = 0; k < 3; ++k) a.positions.push_back(static_cast<float>(x[k]));
+  a.triangles.resize(3 * rest.elements.size());
+  for (std::size_t i = 0; i < a.triangles.size(); ++i) a.triangles[i] = static_cast<std::uint32_t>(i);
+  a.color = color;  // plain: the rest shape carries no field
   return a;
 }
 
@@ -117,6 +154,17 @@ render::Scene scene_for(const SnapshotOp& op, const std::vector<ObjectArrays>& a
       line.width_px = 2.5f;
       scene.polylines.push_back(std::move(line));
     }
+    // Incision lips in red, suture lines in green, drawn over the surface.
+    for (const auto* set : {&a.incisions, &a.sutures})
+      for (const auto& pts : *set) {
+        if (pts.size() < 2) continue;
+        render::PolylineItem line;
+        line.points = pts;
+        line.color = set == &a.incisions ? render::Color{0.85f, 0.1f, 0.1f}
+                                         : render::Color{0.1f, 0.7f, 0.2f};
+        line.width_px = 3.0f;
+        scene.polylines.push_back(std::move(line));
+      }
   }
   scene.color_map = cmap;
   return scene;
@@ -171,7 +219,9 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
     const auto index = static_cast<std::size_t>(selected[i] - workspace.objects().data());
     const render::Color color = kObjectColors[index % kObjectColors.size()];
     after.push_back(arrays_for(op, *selected[i], selected[i]->mesh, color));
-    if (op.side_by_side) before.push_back(arrays_for(op, *selected[i], selected[i]->before, color));
+    if (op.side_by_side)
+      before.push_back(op.compare_rest ? rest_arrays(op, *selected[i], color)
+                                       : arrays_for(op, *selected[i], selected[i]->before, color));
   }
 
   std::optional<render::ColorMap> cmap;
@@ -220,7 +270,8 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   render::Image right = renderer_->render(after_scene, camera, op.width, op.height);
   if (!op.side_by_side) return right;
   render::Image left = renderer_->render(before_scene, camera, op.width, op.height);
-  return render::side_by_side(left, right, "Before", "After");
+  return op.compare_rest ? render::side_by_side(left, right, "Rest shape", "Shape")
+                         : render::side_by_side(left, right, "Before", "After");
 }
 
 }  // namespace sutura::app

@@ -13,6 +13,7 @@ SceneObject& Workspace::add(std::string name, engine::SurfaceMesh mesh) {
   obj.sim.state = engine::state_from_mesh(mesh);
   obj.sim.rest = engine::rest_from_state(mesh, obj.sim.state);
   obj.sim.face_material.assign(mesh.num_faces(), 0);
+  obj.sim.reference = mesh.positions();
   obj.mesh = std::move(mesh);
   objects_.push_back(std::move(obj));
   return objects_.back();

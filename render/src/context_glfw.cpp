@@ -31,7 +31,8 @@ GLFWwindow* as_glfw(void* window) { return static_cast<GLFWwindow*>(window); }
 
 }  // namespace
 
-WindowContext::WindowContext(int width, int height, const std::string& title, bool visible) {
+WindowContext::WindowContext(int width, int height, const std::string& title,
+                             bool visible, int samples) {
   if (width < 1 || height < 1) {
     throw GlError("cannot open a window of " + std::to_string(width) + "x" +
                   std::to_string(height) + " pixels");
@@ -51,7 +52,7 @@ WindowContext::WindowContext(int width, int height, const std::string& title, bo
   glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
   // Anti-aliasing for Renderer::draw, which draws straight into the window. A soft
   // constraint: without multisample visuals GLFW picks a single-sampled framebuffer.
-  glfwWindowHint(GLFW_SAMPLES, 4);
+  glfwWindowHint(GLFW_SAMPLES, samples);
 
   window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
   if (window_ == nullptr) {

@@ -65,6 +65,7 @@ namespace sutura::render {
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
   X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, RenderbufferStorageMultisample) \
+  X(PFNGLSCISSORPROC, Scissor)                                               \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \

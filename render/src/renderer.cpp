@@ -285,7 +285,7 @@ struct Renderer::Impl {
   /// blending and face culling off, depth writes on, and program, vertex array, buffer and
   /// texture bindings at 0.
   void draw_scene(const Scene& scene, const Camera& camera, int width, int height,
-                  bool multisampled, const RenderOptions& options) {
+                  bool multisampled, const RenderOptions& options, int x0 = 0, int y0 = 0) {
     // Everything that can reject the input comes before the first GL state change.
     for (const SurfaceItem& item : scene.surfaces) validate_surface(item);
     const std::array<Point3, 2> bounds = scene_bounds(scene);
@@ -296,7 +296,7 @@ struct Renderer::Impl {
                            projection_matrix(camera, aspect, depth[0], depth[1]),
                            kMarkerDepthBias * radius, multisampled};
 
-    gl.Viewport(0, 0, width, height);
+    gl.Viewport(x0, y0, width, height);
     gl.ClearColor(srgb_from_linear(scene.background[0]), srgb_from_linear(scene.background[1]),
                   srgb_from_linear(scene.background[2]), 1.0f);
     gl.ClearDepth(1.0);
@@ -348,26 +348,38 @@ struct Renderer::Impl {
       gl.BindFramebuffer(GL_FRAMEBUFFER, target.draw_framebuffer());
       draw_scene(scene, camera, width, height, samples > 1, options);
       target.resolve();
-      gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
       gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-      gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-      gl.check("reading the rendered image");
+      read_pixels(image);
     } catch (...) {
       restore_bindings();
       throw;
     }
     restore_bindings();
+    return image;
+  }
 
+  // Reads image.width x image.height pixels of the read framebuffer, top row first.
+  void read_pixels(Image& image) {
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+    gl.check("reading the rendered image");
     // GL's first row is the bottom one; images are stored top row first.
-    const std::size_t row = 4 * static_cast<std::size_t>(width);
+    const std::size_t row = 4 * static_cast<std::size_t>(image.width);
     std::vector<std::uint8_t> swap(row);
-    for (int y = 0; y < height / 2; ++y) {
+    for (int y = 0; y < image.height / 2; ++y) {
       std::uint8_t* top = &image.rgba[row * static_cast<std::size_t>(y)];
-      std::uint8_t* bottom = &image.rgba[row * static_cast<std::size_t>(height - 1 - y)];
+      std::uint8_t* bottom = &image.rgba[row * static_cast<std::size_t>(image.height - 1 - y)];
       std::memcpy(swap.data(), top, row);
       std::memcpy(top, bottom, row);
       std::memcpy(bottom, swap.data(), row);
     }
+  }
+
+  Image read_bound(int width, int height) {
+    check_size(width, height);
+    Image image(width, height);
+    read_pixels(image);
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     return image;
   }
 
@@ -376,9 +388,23 @@ struct Renderer::Impl {
     check_size(width, height);
     GLint sample_buffers = 0;
     gl.GetIntegerv(GL_SAMPLE_BUFFERS, &sample_buffers);
-    draw_scene(scene, camera, width, height, sample_buffers > 0, options);
+    // The scissor box limits the clear to this viewport (side-by-side views in one window).
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(options.viewport_x, options.viewport_y, width, height);
+    try {
+      draw_scene(scene, camera, width, height, sample_buffers > 0, options, options.viewport_x,
+                 options.viewport_y);
+    } catch (...) {
+      gl.Disable(GL_SCISSOR_TEST);
+      throw;
+    }
+    gl.Disable(GL_SCISSOR_TEST);
   }
 };
+
+Image Renderer::read_framebuffer(int width, int height) {
+  return impl_->read_bound(width, height);
+}
 
 Renderer::Renderer(GlContext& context) : impl_(std::make_unique<Impl>(context)) {}
 Renderer::~Renderer() = default;

@@ -34,31 +34,6 @@ std::vector<double> arc_params(const SurfaceMesh& mesh, const std::vector<Vertex
   return s;
 }
 
-// Monotone injective matching of the interior vertices of the coarse list (1..nc-2) to the
-// interior vertices of the fine list (1..nf-2) minimising the summed parameter distance
-// (dynamic programming, O(nc nf)). Returns, per coarse vertex, its fine partner.
-std::vector<std::size_t> match_params(const std::vector<double>& sc, const std::vector<double>& sf) {
-  const std::size_t nc = sc.size(), nf = sf.size();
-  std::vector<std::size_t> partner(nc);
-  partner[0] = 0;
-  partner[nc - 1] = nf - 1;
-  const std::size_t ic = nc - 2, jf = nf - 2;  // interior counts, ic <= jf
-  if (ic == 0) return partner;
-  const double inf = std::numeric_limits<double>::infinity();
-  // cost[i][j]: best cost matching coarse interior 1..i to fine interior within 1..j.
-  std::vector<std::vector<double>> cost(ic + 1, std::vector<double>(jf + 1, inf));
-  for (std::size_t j = 0; j <= jf; ++j) cost[0][j] = 0.0;
-  for (std::size_t i = 1; i <= ic; ++i)
-    for (std::size_t j = i; j <= jf; ++j)
-      cost[i][j] = std::min(cost[i][j - 1], cost[i - 1][j - 1] + std::abs(sc[i] - sf[j]));
-  for (std::size_t i = ic, j = jf; i > 0; --j) {
-    if (j > i && cost[i][j] == cost[i][j - 1]) continue;
-    partner[i] = j;
-    --i;
-  }
-  return partner;
-}
-
 struct UnionFind {
   std::vector<int> parent;
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -147,32 +122,46 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
     std::vector<int> As(A.size()), Bs(B.size());
     for (std::size_t i = 0; i < A.size(); ++i) As[i] = A[i].value;
     for (std::size_t i = 0; i < B.size(); ++i) Bs[i] = B[i].value;
-    if (A.size() != B.size()) {
-      // Refine the coarser list: every fine vertex without a partner gets a new vertex on the
-      // coarse edge between the partners of its matched neighbours, at the same relative arc
-      // length, so the pairing stays monotone.
-      const bool a_coarse = A.size() < B.size();
-      std::vector<int>& C = a_coarse ? As : Bs;
-      const std::vector<double>& sc = a_coarse ? sa : sb;
-      const std::vector<double>& sf = a_coarse ? sb : sa;
-      const std::vector<std::size_t> partner = match_params(sc, sf);
-      std::vector<int> refined;
-      for (std::size_t k = 0; k + 1 < C.size(); ++k) {
-        refined.push_back(C[k]);
-        const std::size_t j0 = partner[k], j1 = partner[k + 1];
-        int u = C[k];
-        double t_done = 0.0;
-        for (std::size_t j = j0 + 1; j < j1; ++j) {
-          const double t = (sf[j] - sf[j0]) / (sf[j1] - sf[j0]);
-          u = soup.split_edge(u, C[k + 1], (t - t_done) / (1.0 - t_done));
-          t_done = t;
-          refined.push_back(u);
-        }
+    // Pair by arc length. Vertices of the two chains at (nearly) the same normalised arc
+    // length are partners; every other vertex gets a partner inserted on the other chain's
+    // edge at its arc length. Pairing existing vertices that lie apart would suture rest
+    // points that do not correspond and leave a shear defect along the seam; a partner is
+    // accepted within kMatch of the local spacing (the sliver guard of the insertion).
+    constexpr double kMatch = 0.2;
+    auto spacing = [](const std::vector<double>& t, std::size_t i) {
+      return std::min(t[i] - t[i - 1], t[i + 1] - t[i]);
+    };
+    std::vector<int> RA{As.front()}, RB{Bs.front()};
+    double ta_last = 0.0, tb_last = 0.0;
+    std::size_t i = 1, j = 1;
+    const std::size_t na = As.size(), nb = Bs.size();
+    while (i + 1 < na || j + 1 < nb) {
+      const double ta = i + 1 < na ? sa[i] : 2.0, tb = j + 1 < nb ? sb[j] : 2.0;
+      const double tol = kMatch * std::min(i + 1 < na ? spacing(sa, i) : 1.0,
+                                           j + 1 < nb ? spacing(sb, j) : 1.0);
+      if (std::abs(ta - tb) <= tol) {
+        RA.push_back(As[i++]);
+        RB.push_back(Bs[j++]);
+        ta_last = ta, tb_last = tb;
+      } else if (ta < tb) {
+        // Partner for A[i] on B's edge (last B vertex, B[j]).
+        const double t = (ta - tb_last) / (sb[j] - tb_last);
+        RB.push_back(soup.split_edge(RB.back(), Bs[j], t));
+        RA.push_back(As[i++]);
+        ++rep.inserted_b;
+        ta_last = tb_last = ta;
+      } else {
+        const double t = (tb - ta_last) / (sa[i] - ta_last);
+        RA.push_back(soup.split_edge(RA.back(), As[i], t));
+        RB.push_back(Bs[j++]);
+        ++rep.inserted_a;
+        ta_last = tb_last = tb;
       }
-      refined.push_back(C.back());
-      (a_coarse ? rep.inserted_a : rep.inserted_b) = int(refined.size() - C.size());
-      C = std::move(refined);
     }
+    RA.push_back(As.back());
+    RB.push_back(Bs.back());
+    As = std::move(RA);
+    Bs = std::move(RB);
     for (std::size_t i = 0; i < As.size(); ++i) {
       pair_vertices[p].emplace_back(As[i], Bs[i]);
       rep.max_gap = std::max(rep.max_gap, (soup.position(As[i]) - soup.position(Bs[i])).norm());

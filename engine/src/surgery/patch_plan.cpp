@@ -115,6 +115,28 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
   const VertexId e = nearest_boundary_vertex(plan.rest, tip_end);
   plan.edge_left = boundary_chain(plan.rest, e, nearest_boundary_vertex(plan.rest, start_left));
   plan.edge_right = boundary_chain(plan.rest, nearest_boundary_vertex(plan.rest, start_right), e);
+
+  // The rest shape is the flat patch moved rigidly onto the tangent plane at the incision's
+  // middle (axes: along the cut, sideways, host normal). Rigid motions change nothing
+  // intrinsic, but the nodal triads of a fresh object are the world axes: the patch's rest
+  // triads must be stated in the same world as the host's, or the suture would join triads of
+  // two unrelated frames (a patch cut in the z = 0 plane would want its normal along z).
+  Vec3 mid_point = Vec3::Zero(), mid_normal = Vec3::Zero();
+  for (const auto* chain : {&plan.lip_left, &plan.lip_right})
+    for (const VertexId v : chain->vertices) {
+      mid_point += host.position(v);
+      mid_normal += vn[v.index()];
+    }
+  mid_point /= double(plan.lip_left.vertices.size() + plan.lip_right.vertices.size());
+  mid_normal.normalize();
+  Vec3 along = host.position(plan.lip_left.vertices.back()) - host.position(plan.lip_left.vertices.front());
+  along = (along - along.dot(mid_normal) * mid_normal).normalized();
+  const Vec3 across = mid_normal.cross(along);
+  std::vector<Vec3> rest_world;
+  rest_world.reserve(plan.rest.num_vertices());
+  for (const Vec3& p : plan.rest.positions())
+    rest_world.push_back(mid_point + p.x() * along + p.y() * across + p.z() * mid_normal);
+  plan.rest = SurfaceMesh(std::move(rest_world), plan.rest.faces());
   return plan;
 }
 

@@ -128,7 +128,8 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
   int cuts = 0, done = 0;
   result.s_reached = s;
   while (s < p.s_end - 1e-12) {
-    const double s_next = std::min(p.s_end, s + ds);
+    // The last increment lands on s_end exactly (no round-off short of 1).
+    const double s_next = s + ds >= p.s_end - 1e-9 ? p.s_end : s + ds;
     rest = rest_at(y0, x0, s_next);
     const ShellState good = state;
     const StaticResult r = solve_static(sys, state, increment_params(p, scales));

@@ -2,7 +2,13 @@
 // Headless replay of a session: runs every action in order, writes PNGs, meshes and
 // report.json inside the output directory, and reports progress.
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -11,9 +17,31 @@
 
 namespace sutura::app {
 
+/// Where a long-running op (simulate) stands; see ReplayOptions::on_progress.
+struct RunProgress {
+  std::string phase;      ///< "simulate" (the lead's relaxation adds "relax" / "settle")
+  int step = 0;           ///< steps done so far in this op
+  int steps = 0;          ///< steps planned in this op
+  double fraction = 0.0;  ///< of the whole op, [0, 1]
+  /// Current positions of every object the op simulates, by name; the spans are valid only
+  /// during the callback (copy what you keep).
+  std::vector<std::pair<std::string, std::span<const engine::Vec3>>> positions;
+};
+
+/// Thrown by an op whose ReplayOptions::on_progress returned false. The op's objects hold the
+/// state reached when it stopped; callers that cancel restore a SessionRunner checkpoint.
+class OpCancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct ReplayOptions {
   std::filesystem::path out_dir = "out";  ///< every output goes inside; created if missing
   std::ostream* progress = nullptr;       ///< one line per action; nullptr = silent
+  /// Called by long ops before each step, on the thread running the op (the GUI's worker);
+  /// may block (pause). Return false to cancel the op (it then throws OpCancelled).
+  /// Empty: never called.
+  std::function<bool(const RunProgress&)> on_progress;
 };
 
 struct ReplayResult {

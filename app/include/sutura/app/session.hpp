@@ -13,12 +13,21 @@
 #include <variant>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/material.hpp"
 #include "sutura/engine/sim/constraints.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/selection.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
+#include "sutura/engine/measure/cross_section.hpp"
+#include "sutura/engine/sim/contact.hpp"
+#include "sutura/engine/surgery/boundary_chain.hpp"
+#include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/patch_plan.hpp"
+#include "sutura/engine/surgery/relaxation.hpp"
+#include "sutura/engine/surgery/resect.hpp"
 
 namespace sutura::app {
 
@@ -54,6 +63,9 @@ struct GenerateOp {
                engine::CylinderPanelParams>
       params;
   Vec3f translate = {0, 0, 0};  ///< mm, applied after generation
+  /// Add the generated mesh to the existing object `object` as a separate part (e.g. the
+  /// second of two strips to be sutured), made of that object's first material.
+  bool append = false;
 };
 
 /// Loads an object from a mesh file (path relative to the session file).
@@ -87,6 +99,8 @@ struct SnapshotOp {
   bool side_by_side = false;  ///< before | after, each width x height
   bool wireframe = false;
   bool boundaries = true;     ///< draw boundary loops as polylines
+  bool marks = true;         ///< draw incisions (red) and sutures (green) on the current state
+  bool compare_rest = false; ///< side by side: the current rest shape instead of the before-state
 };
 
 /// Writes an object's current mesh (.obj/.ply/.stl) inside the output directory.
@@ -111,6 +125,9 @@ struct MaterialOp {
 struct VertexSelection {
   std::optional<engine::Selection> engine;
   std::optional<std::vector<int>> boundary_loops;
+  /// The boundary loops nearest these points (each the loop with the closest vertex); robust
+  /// where loop indices move as incisions open and sutures close loops.
+  std::vector<engine::Vec3> boundary_near;
 };
 
 /// Fixes degrees of freedom of the selected vertices (zero increment from then on).
@@ -164,10 +181,15 @@ struct SimulateOp {
   std::vector<std::string> objects;
   std::string model = "corotational";
   engine::DynamicsParams params;
+  /// Rest-shape relaxation of the sutures made since the last run (paper, Sec. 2.3) instead
+  /// of plain dynamics; its dynamics settings come from `params`.
+  std::optional<engine::RelaxationParams> relax;
+  /// Penalty contact between the simulated objects (none when absent).
+  std::optional<engine::ContactParams> contact;
 };
 
-/// Records displacement and rotation of the vertex nearest to `point` (in the object's
-/// before-state) in the report under `name`.
+/// Records displacement and rotation of the vertex nearest to `point` (both measured from
+/// the vertices' pre-operative positions, carried across edits) in the report under `name`.
 struct ProbeOp {
   std::string object;
   std::string name;
@@ -183,9 +205,70 @@ struct CheckOp {
   double abs_tol = 0.0;
 };
 
+// --- surgery ops (session_ops_surgery.cpp; executed by replay_surgery_ops.cpp) -------------
+
+/// Cuts the object along the curve through `points` (engine::incise).
+struct InciseOp {
+  std::string object;
+  std::vector<engine::Vec3> points;
+  engine::IncisionParams params;
+};
+
+/// One suture: two boundary chains named by points (engine::ChainSpec).
+struct SutureSpec {
+  engine::ChainSpec a, b;
+};
+
+/// Sutures boundary chains of one object (engine::join), several at once. The next
+/// `simulate` with `relax` pulls the rest shape from the joined shape to the original.
+struct JoinOp {
+  std::string object;
+  std::vector<SutureSpec> sutures;
+};
+
+/// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
+/// sutures it to both lips, as part of the same object with its own material.
+struct PatchOp {
+  std::string object;
+  engine::Vec3 start = engine::Vec3::Zero();
+  engine::Vec3 end = engine::Vec3::Zero();
+  engine::PatchPlanParams params;
+  engine::ShellMaterial material;
+};
+
+/// Removes the region between cut planes (or beyond one) and optionally sutures the two
+/// loops left by two planes end to end (anastomosis).
+struct ResectOp {
+  std::string object;
+  std::vector<engine::CutPlane> planes;
+  std::optional<engine::Vec3> seed;  ///< a point in the part to remove; default: between the planes
+  engine::ResectionParams params;
+  bool anastomosis = false;          ///< two planes only
+  /// Anastomosis: the loops' first vertices are the ones nearest this point (default: the
+  /// point of each loop farthest along +z), so the two ends are sutured without a twist.
+  std::optional<engine::Vec3> align;
+};
+
+/// Cross-section of an object by a plane, before and after, recorded under `name`.
+struct MeasureOp {
+  std::string object;
+  std::string name;
+  std::optional<engine::Plane> plane;
+  /// Or a lumen profile: `stations` planes perpendicular to this polyline; reports the
+  /// minimum lumen area before and after.
+  std::vector<engine::Vec3> centreline;
+  int stations = 20;
+  double max_radius = 0.0;  ///< mm; 0 = unlimited
+};
+
+/// Undo / redo of the last workspace change (edits, constraints, runs).
+struct UndoOp {};
+struct RedoOp {};
+
 using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
-                        SimulateOp, ProbeOp, CheckOp>;
+                        SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
+                        MeasureOp, UndoOp, RedoOp>;
 
 /// One parsed action with where it came from.
 struct Action {
@@ -206,6 +289,10 @@ Session load_session(const std::filesystem::path& file);
 
 /// Parses session text; `file` is used for messages and to resolve relative input paths.
 Session parse_session(const std::string& text, const std::filesystem::path& file);
+
+/// Parses and checks one action line (already decoded JSON) as if it were line `line` of
+/// `file`: the GUI records each action with it before running it. Throws SessionError.
+Action parse_action(const nlohmann::json& line_json, const std::filesystem::path& file, int line);
 
 /// Names of every op this build understands (for messages and docs tests).
 const std::vector<std::string>& known_ops();

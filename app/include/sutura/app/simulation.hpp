@@ -3,11 +3,14 @@
 // merging them into one ShellSystem with disjoint node ranges (so contact between them can be
 // added as one more term), and the result is written back to each object.
 #include <memory>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sutura/app/workspace.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
 
@@ -20,13 +23,25 @@ class MergedSystem {
  public:
   /// Merges `objects` (non-empty, distinct). Pending loads are scaled by lambda, applied
   /// loads are constant. Throws std::invalid_argument for moments with a 3-DOF model.
-  MergedSystem(const std::vector<SceneObject*>& objects, const engine::ShellModel& model);
+  /// With `contact` and at least two objects, a penalty contact term between every pair of
+  /// objects is added to the system (no self-contact); engine::InvalidArgument for invalid
+  /// contact parameters.
+  MergedSystem(const std::vector<SceneObject*>& objects, const engine::ShellModel& model,
+               const engine::ContactParams* contact = nullptr);
 
   [[nodiscard]] const engine::ShellSystem& system() const { return system_; }
+  /// The merged rest state the system points at (a relaxation rewrites it as it runs).
+  engine::RestState& rest() { return rest_; }
+  /// Merged y0 for a relaxation: each object's pending relax_from, or its rest where it has
+  /// none (nothing to relax there: y0 = x0).
+  [[nodiscard]] engine::RestState relax_from() const;
   engine::ShellState& state() { return state_; }
   Eigen::VectorXd& velocity() { return velocity_; }
   /// Copies the merged state (and velocity) back into every object and its mesh positions.
   void write_back();
+  /// Each object's name with its slice of merged positions `x` (e.g. a running state's x).
+  [[nodiscard]] std::vector<std::pair<std::string, std::span<const engine::Vec3>>>
+  positions_by_object(const std::vector<engine::Vec3>& x) const;
 
  private:
   std::vector<SceneObject*> objects_;
@@ -36,6 +51,7 @@ class MergedSystem {
   std::vector<engine::ShellMaterial> materials_;
   std::vector<int> face_material_;
   engine::ShellSystem system_;
+  std::unique_ptr<engine::ContactTerm> contact_;  ///< in system_.terms when present
   engine::ShellState state_;
   Eigen::VectorXd velocity_;
 };

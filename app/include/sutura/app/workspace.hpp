@@ -1,5 +1,6 @@
 #pragma once
 // The objects a session works on, by name, in the order they were created.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,19 @@ struct SimulationData {
   engine::Loads pending_loads;   ///< loads defined since; ramped in by the next solve
   double pending_factor = 0.0;   ///< fraction of pending_loads in equilibrium now, [0, 1)
   Eigen::VectorXd velocity;      ///< per DOF of the last dynamics run; empty = at rest
+  /// Per vertex: where its material point was before the operation (carried across edits by
+  /// the parent maps), for displacement fields and probes.
+  std::vector<engine::Vec3> reference;
+  /// y0 of the sutures made since the last relaxation (paper, Sec. 2.3): the rest shape the
+  /// next relaxing run starts from; `rest` is x0. Empty = nothing to relax.
+  std::optional<engine::RestState> relax_from;
+  double relax_s = 0.0;  ///< how far a part-way relaxation got, [0, 1)
+};
+
+/// What the surgeon did to an object, for drawing: vertex chains of the current mesh.
+struct SurgicalMarks {
+  std::vector<std::vector<engine::VertexId>> incisions;  ///< both lips of each cut
+  std::vector<std::vector<engine::VertexId>> sutures;    ///< merged vertices of each seam
 };
 
 struct SceneObject {
@@ -30,6 +44,7 @@ struct SceneObject {
   engine::SurfaceMesh mesh;    ///< current state
   engine::SurfaceMesh before;  ///< pre-operative state: the mesh as generated or loaded
   SimulationData sim;
+  SurgicalMarks marks;
 };
 
 class Workspace {

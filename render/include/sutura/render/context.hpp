@@ -29,6 +29,8 @@ class GlContext {
 std::unique_ptr<GlContext> create_offscreen_context();
 
 /// A GLFW window with a 3.3 core context. `visible = false` creates a hidden window.
+/// `samples`: multisampling of the window's framebuffer for anti-aliasing (a request; 0 =
+/// off, much faster on llvmpipe).
 /// Throws GlError when no display is available or context creation fails.
 /// GLFW rules apply: create, use and destroy windows on the main thread only.
 /// Mixing with an off-screen context on one thread: OSMesa and Mesa's GLX share one
@@ -37,7 +39,8 @@ std::unique_ptr<GlContext> create_offscreen_context();
 /// on the window.
 class WindowContext : public GlContext {
  public:
-  WindowContext(int width, int height, const std::string& title, bool visible = true);
+  WindowContext(int width, int height, const std::string& title, bool visible = true,
+                int samples = 4);
   ~WindowContext() override;
   WindowContext(const WindowContext&) = delete;
   WindowContext& operator=(const WindowContext&) = delete;

@@ -18,6 +18,10 @@ namespace sutura::render {
 struct RenderOptions {
   int samples = 4;          ///< MSAA samples for anti-aliasing (1 = off)
   bool draw_legend = true;  ///< colour bar with min/max and label when the scene has one
+  /// draw() only: lower-left corner, in pixels of the bound framebuffer, of the area drawn
+  /// (and cleared); render() ignores it.
+  int viewport_x = 0;
+  int viewport_y = 0;
 };
 
 class Renderer {
@@ -39,12 +43,18 @@ class Renderer {
                const RenderOptions& options = {});
 
   /// Draws into the currently bound framebuffer (the GUI's window) with a viewport of
-  /// width x height, clearing it first. The context must be current. Anti-aliasing is that
+  /// width x height at (options.viewport_x, options.viewport_y), clearing only that area
+  /// first (scissor test, off again on return). The context must be current. Anti-aliasing is that
   /// of the bound framebuffer (WindowContext asks for 4 samples); options.samples is
   /// ignored. Leaves depth test off and program, vertex array, buffer and texture bindings
   /// at 0. Throws like render().
   void draw(const Scene& scene, const Camera& camera, int width, int height,
             const RenderOptions& options = {});
+
+  /// The lower-left width x height pixels of the bound read framebuffer (the GUI window's
+  /// back buffer after drawing a frame), top row first, alpha 255. The context must be
+  /// current. Throws GlError like render().
+  Image read_framebuffer(int width, int height);
 
  private:
   struct Impl;

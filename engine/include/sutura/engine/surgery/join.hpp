@@ -35,9 +35,13 @@ struct JoinResult {
   std::vector<VertexId> merged;                   ///< every vertex made of more than one copy
 };
 
-/// Sutures all pairs in one edit. Vertices are paired by normalised arc length; when the
-/// counts differ, the coarser chain's edges are split at the arc lengths of the finer chain's
-/// unmatched vertices (the minimal resampling the paper requires), reported in `sutures`.
+/// Sutures all pairs in one edit. Vertices are paired by normalised arc length: vertices of
+/// both chains at the same arc length (within a fifth of the local spacing) are partners, and
+/// every vertex without one gets a partner inserted by splitting the other chain's edge at
+/// its arc length (the resampling the paper requires; a coarser chain is refined to the finer
+/// one's vertices). Insertions are reported in `sutures`. Pairing vertices that lie at
+/// different arc lengths instead would suture non-corresponding rest points and leave a shear
+/// defect along the seam.
 /// Throws InvalidArgument naming the suture and the problem: a chain that is not a run of
 /// boundary edges in the boundary direction, chains that overlap (a chain joined with itself),
 /// a closed loop paired with an open chain, a suture that would collapse a triangle or make

@@ -18,7 +18,9 @@ struct PatchPlanParams {
 };
 
 struct PatchPlan {
-  SurfaceMesh rest;    ///< the patch as cut from the sheet: flat, in its own plane (its rest shape)
+  /// The patch as cut from the sheet (its rest shape): flat, moved rigidly onto the tangent
+  /// plane at the incision's middle, so its rest triads are in the host's world frame.
+  SurfaceMesh rest;
   SurfaceMesh placed;  ///< same topology, laid onto the host surface over the incision
   BoundaryChain lip_left, lip_right;      ///< host chains (boundary direction)
   BoundaryChain edge_left, edge_right;    ///< patch chains (boundary direction) meeting them

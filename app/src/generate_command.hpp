@@ -1,0 +1,37 @@
+#pragma once
+// `sutura generate arch`: writes the synthetic infant aortic arch (aorta.ply, pulmonary.ply)
+// and its landmarks (landmarks.json) into a directory. See docs/anatomy.md.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sutura/engine/anatomy/aortic_arch.hpp"
+
+namespace sutura::app {
+
+struct GenerateArchOptions {
+  std::string out_dir;
+  std::string resolution = "coarse";   ///< "coarse" | "fine": kArchCoarse/FineEdgeLength
+  std::optional<double> edge_length;   ///< mm; overrides the resolution
+  std::optional<double> coarctation;   ///< ArchParams::coarctation_fraction
+  std::string branches = "all";        ///< "all" (innominate, carotid, subclavian) | "lsa"
+  bool quiet = false;
+};
+
+/// Adds `generate` with its `arch` subcommand to `app`; returns the `arch` subcommand, which is
+/// parsed when it is given on the command line.
+CLI::App* add_generate_command(CLI::App& app, GenerateArchOptions& options);
+
+/// The model parameters the options select (defaults otherwise).
+engine::ArchParams arch_params(const GenerateArchOptions& options);
+
+/// landmarks.json content: format header, the parameters, per-object mesh summary, landmarks.
+nlohmann::json landmarks_json(const engine::ArchAnatomy& anatomy, const engine::ArchParams& params);
+
+/// Generates and writes the files (each atomically). Throws engine::InvalidArgument for bad
+/// parameters and engine::MeshIoError / std::runtime_error when writing fails. Returns 0.
+int run_generate_arch(const GenerateArchOptions& options);
+
+}  // namespace sutura::app

@@ -1,0 +1,255 @@
+// Execution of the surgery ops (incise, join, patch, resect, measure) and of undo/redo.
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "replay_run.hpp"
+#include "surgery_edits.hpp"
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/measure/cross_section.hpp"
+#include "sutura/engine/measure/lumen_profile.hpp"
+#include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/join.hpp"
+#include "sutura/engine/surgery/patch_plan.hpp"
+#include "sutura/engine/surgery/resect.hpp"
+
+namespace sutura::app::detail {
+
+namespace {
+
+// Keep memory bounded on long GUI sessions: each entry is a copy of every object.
+constexpr std::size_t kMaxUndo = 64;
+
+json suture_report(const engine::SutureReport& s) {
+  json j = {{"vertices_a", s.vertices_a},   {"vertices_b", s.vertices_b},
+            {"inserted_a", s.inserted_a},   {"inserted_b", s.inserted_b},
+            {"length_a_mm", s.length_a},    {"length_b_mm", s.length_b},
+            {"max_gap_mm", s.max_gap}};
+  if (s.inserted_a + s.inserted_b > 0) {
+    std::ostringstream note;
+    const bool a = s.inserted_a > 0;
+    note << "chain " << (a ? "a" : "b") << " refined: " << (a ? s.inserted_a : s.inserted_b)
+         << " vertices inserted (" << (a ? s.vertices_a : s.vertices_b) << " -> "
+         << (a ? s.vertices_a + s.inserted_a : s.vertices_b + s.inserted_b)
+         << ") to pair with the " << (a ? s.vertices_b : s.vertices_a)
+         << " vertices of the other chain by arc length";
+    j["resampled"] = note.str();
+  }
+  return j;
+}
+
+json section_json(const engine::CrossSection& c) {
+  return {{"closed", c.closed},
+          {"area_mm2", c.area},
+          {"perimeter_mm", c.perimeter},
+          {"equivalent_diameter_mm", c.equivalent_diameter},
+          {"min_diameter_mm", c.min_diameter},
+          {"max_diameter_mm", c.max_diameter},
+          {"centroid", {c.centroid.x(), c.centroid.y(), c.centroid.z()}}};
+}
+
+// Rotates a closed chain so that it starts at its vertex farthest along `u` from `centre`.
+engine::BoundaryChain start_towards(const engine::SurfaceMesh& mesh, engine::BoundaryChain c,
+                                    const engine::Vec3& centre, const engine::Vec3& u) {
+  std::size_t best = 0;
+  double far = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < c.vertices.size(); ++i) {
+    const double d = (mesh.position(c.vertices[i]) - centre).dot(u);
+    if (d > far) far = d, best = i;
+  }
+  std::rotate(c.vertices.begin(), c.vertices.begin() + std::ptrdiff_t(best), c.vertices.end());
+  return c;
+}
+
+engine::Vec3 centroid(const engine::SurfaceMesh& mesh, const engine::BoundaryChain& c) {
+  engine::Vec3 s = engine::Vec3::Zero();
+  for (const auto v : c.vertices) s += mesh.position(v);
+  return s / double(c.vertices.size());
+}
+
+json mesh_counts(const SceneObject& obj) {
+  return {{"vertices", obj.mesh.num_vertices()},
+          {"faces", obj.mesh.num_faces()},
+          {"boundary_loops", obj.mesh.boundary_loops().size()}};
+}
+
+}  // namespace
+
+void Run::remember() {
+  undo_stack.push_back(workspace);
+  if (undo_stack.size() > kMaxUndo) undo_stack.erase(undo_stack.begin());
+  redo_stack.clear();
+}
+
+json Run::execute(const UndoOp&) {
+  if (undo_stack.empty()) throw std::runtime_error("nothing to undo");
+  redo_stack.push_back(std::move(workspace));
+  workspace = std::move(undo_stack.back());
+  undo_stack.pop_back();
+  return {{"undo_left", undo_stack.size()}, {"redo_left", redo_stack.size()}};
+}
+
+json Run::execute(const RedoOp&) {
+  if (redo_stack.empty()) throw std::runtime_error("nothing to redo");
+  undo_stack.push_back(std::move(workspace));
+  workspace = std::move(redo_stack.back());
+  redo_stack.pop_back();
+  return {{"undo_left", undo_stack.size()}, {"redo_left", redo_stack.size()}};
+}
+
+json Run::execute(const InciseOp& op) {
+  remember();
+  SceneObject& obj = object(op.object);
+  const engine::IncisionResult r = engine::incise(obj.mesh, op.points, op.params);
+  apply_edit(obj, r.mesh, r.maps);
+  obj.marks.incisions.push_back(r.left);
+  obj.marks.incisions.push_back(r.right);
+  json j = {{"object", op.object},
+            {"mode", op.params.mode == engine::IncisionMode::SnapToEdges ? "snap" : "cut"},
+            {"length_mm", r.length},
+            {"lip_vertices", r.left.size()},
+            {"inserted_vertices", r.inserted_vertices},
+            {"snapped_points", r.snapped_points},
+            {"starts_on_boundary", r.starts_on_boundary},
+            {"ends_on_boundary", r.ends_on_boundary}};
+  j["mesh"] = mesh_counts(obj);
+  return j;
+}
+
+json Run::execute(const JoinOp& op) {
+  remember();
+  SceneObject& obj = object(op.object);
+  std::vector<engine::SuturePair> pairs;
+  for (std::size_t i = 0; i < op.sutures.size(); ++i) {
+    try {
+      pairs.push_back({engine::find_boundary_chain(obj.mesh, op.sutures[i].a),
+                       engine::find_boundary_chain(obj.mesh, op.sutures[i].b)});
+    } catch (const engine::InvalidArgument& e) {
+      throw std::runtime_error("suture " + std::to_string(i + 1) + ": " + e.what());
+    }
+  }
+  const engine::JoinResult r = engine::join(obj.mesh, pairs);
+  apply_edit(obj, r.mesh, r.maps);
+  start_relaxation(obj, r.merged, {});
+  for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+  json sutures = json::array();
+  for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
+  json j = {{"object", op.object}, {"sutures", sutures}, {"merged_vertices", r.merged.size()}};
+  j["mesh"] = mesh_counts(obj);
+  return j;
+}
+
+json Run::execute(const PatchOp& op) {
+  remember();
+  SceneObject& obj = object(op.object);
+  const engine::PatchPlan plan = engine::plan_patch(obj.mesh, op.start, op.end, op.params);
+  const std::size_t host_faces = obj.mesh.num_faces();
+  const std::size_t offset = append_component(obj, plan.placed, plan.rest, op.material);
+  auto shifted = [&](engine::BoundaryChain c) {
+    for (auto& v : c.vertices) v = engine::VertexId(v.index() + offset);
+    return c;
+  };
+  const engine::JoinResult r =
+      engine::join(obj.mesh, {{plan.lip_left, shifted(plan.edge_left)},
+                              {plan.lip_right, shifted(plan.edge_right)}});
+  // The whole patch starts congruent with its placement (it is laid out curved, cut flat).
+  std::vector<bool> patch_faces(r.mesh.num_faces(), false);
+  for (std::size_t f = 0; f < r.maps.faces.size(); ++f)
+    patch_faces[f] = r.maps.faces[f].parent.index() >= host_faces;
+  apply_edit(obj, r.mesh, r.maps);
+  start_relaxation(obj, r.merged, patch_faces);
+  for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+  json sutures = json::array();
+  for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
+  json j = {{"object", op.object},
+            {"incision_length_mm", plan.incision_length},
+            {"patch_vertices", plan.rest.num_vertices()},
+            {"patch_faces", plan.rest.num_faces()},
+            {"patch_area_mm2", plan.rest.total_area()},
+            {"sutures", sutures}};
+  j["mesh"] = mesh_counts(obj);
+  return j;
+}
+
+json Run::execute(const ResectOp& op) {
+  remember();
+  SceneObject& obj = object(op.object);
+  engine::Vec3 seed = engine::Vec3::Zero();
+  if (op.seed) {
+    seed = *op.seed;
+  } else {
+    for (const auto& p : op.planes) seed += p.origin;
+    seed /= double(op.planes.size());
+  }
+  const engine::ResectionResult rr = engine::resect(obj.mesh, op.planes, seed, op.params);
+  apply_edit(obj, rr.mesh, rr.maps);
+  json j = {{"object", op.object},
+            {"removed_faces", rr.removed_faces},
+            {"removed_area_mm2", rr.removed_area}};
+  json loops = json::array();
+  for (const auto& l : rr.loops) loops.push_back(l.vertices.size());
+  j["loop_vertices"] = loops;
+  if (op.anastomosis) {
+    const engine::Vec3 ca = centroid(obj.mesh, rr.loops[0]), cb = centroid(obj.mesh, rr.loops[1]);
+    // Start both loops on the same side so the ends are sutured without a twist.
+    engine::Vec3 axis = cb - ca;
+    if (axis.norm() < 1e-12) axis = op.planes[0].normal;
+    axis.normalize();
+    engine::Vec3 u = op.align ? engine::Vec3(*op.align - ca) : engine::Vec3::UnitX();
+    u -= u.dot(axis) * axis;
+    if (u.norm() < 1e-9) u = axis.unitOrthogonal();
+    u.normalize();
+    const engine::JoinResult r =
+        engine::join(obj.mesh, {{start_towards(obj.mesh, rr.loops[0], ca, u),
+                                 start_towards(obj.mesh, rr.loops[1], cb, u)}});
+    apply_edit(obj, r.mesh, r.maps);
+    start_relaxation(obj, r.merged, {});
+    for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+    j["anastomosis"] = suture_report(r.sutures[0]);
+  }
+  j["mesh"] = mesh_counts(obj);
+  return j;
+}
+
+json Run::execute(const MeasureOp& op) {
+  const SceneObject& obj = object(op.object);
+  json j = {{"object", op.object}};
+  const double radius = op.max_radius > 0 ? op.max_radius : std::numeric_limits<double>::infinity();
+  if (op.plane) {
+    engine::CrossSectionParams p;
+    p.max_radius = radius;
+    const engine::CrossSection before = engine::cross_section(obj.before, *op.plane, p);
+    const engine::CrossSection after = engine::cross_section(obj.mesh, *op.plane, p);
+    j["before"] = section_json(before);
+    j["after"] = section_json(after);
+    j["area_change_percent"] = 100.0 * (after.area - before.area) / before.area;
+  } else {
+    engine::LumenProfileParams p;
+    p.stations = op.stations;
+    p.max_radius = radius;
+    for (const auto* which : {&obj.before, &obj.mesh}) {
+      const engine::LumenProfile prof = engine::lumen_profile(*which, op.centreline, p);
+      json stations = json::array();
+      for (const auto& s : prof.stations)
+        stations.push_back({{"arc_length_mm", s.arc_length},
+                            {"area_mm2", s.section ? json(s.section->area) : json(nullptr)},
+                            {"closed", s.section ? s.section->closed : false}});
+      json side = {{"stations", stations}};
+      if (!prof.min_area_station)
+        throw std::runtime_error("measure '" + op.name + "': no closed cross-section along the "
+                                 "centreline of object '" + op.object + "'");
+      const auto& m = prof.stations[*prof.min_area_station];
+      side["min_area_mm2"] = m.section->area;
+      side["min_area_arc_length_mm"] = m.arc_length;
+      side["min_equivalent_diameter_mm"] = m.section->equivalent_diameter;
+      j[which == &obj.before ? "before" : "after"] = side;
+    }
+    const double b = j["before"]["min_area_mm2"].get<double>();
+    const double a = j["after"]["min_area_mm2"].get<double>();
+    j["min_area_change_percent"] = 100.0 * (a - b) / b;
+  }
+  measurements[op.name] = j;
+  return {{"measurement", op.name}, {"values", j}};
+}
+
+}  // namespace sutura::app::detail

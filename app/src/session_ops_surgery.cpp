@@ -1,0 +1,175 @@
+// Parsers of the surgery ops: incise, join, patch, resect, measure, undo, redo.
+#include "session_ops.hpp"
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::app::detail {
+
+namespace {
+
+std::vector<engine::Vec3> points(Fields& f, const std::string& key) {
+  std::vector<engine::Vec3> out;
+  for (const auto& p : f.vec3_list(key)) out.push_back(vec(p));
+  return out;
+}
+
+engine::ChainSpec parse_chain(Fields& c, double max_distance) {
+  engine::ChainSpec spec;
+  spec.max_distance = max_distance;
+  if (c.has("loop")) {
+    if (c.has("from") || c.has("to") || c.has("via"))
+      c.fail("loop", "give either loop, or from and to (and optionally via)");
+    spec.loop = true;
+    spec.from = vec(c.required_vec3("loop"));
+  } else {
+    spec.from = vec(c.required_vec3("from"));
+    spec.to = vec(c.required_vec3("to"));
+    if (auto v = c.optional_vec3("via")) spec.via = vec(*v);
+  }
+  c.finish();
+  return spec;
+}
+
+engine::ShellMaterial parse_material_object(Fields& m, engine::ShellMaterial mat) {
+  mat.youngs_modulus = m.optional_positive("youngs_modulus", mat.youngs_modulus);
+  mat.poisson_ratio = m.optional_number("poisson_ratio", mat.poisson_ratio);
+  if (mat.poisson_ratio < 0.0 || mat.poisson_ratio >= 0.5)
+    m.fail("poisson_ratio", "must be in [0, 0.5)");
+  mat.thickness = m.optional_positive("thickness", mat.thickness);
+  mat.density = m.optional_positive("density", mat.density);
+  mat.drilling_factor = m.optional_positive("drilling_factor", mat.drilling_factor);
+  m.finish();
+  return mat;
+}
+
+engine::Vec3 nonzero_normal(Fields& f, const std::string& key) {
+  const engine::Vec3 n = vec(f.required_vec3(key));
+  if (!(n.norm() > 0.0)) f.fail(key, "must not be the zero vector");
+  return n;
+}
+
+InciseOp parse_incise(Fields& f) {
+  InciseOp op;
+  op.object = object_name(f);
+  op.points = points(f, "points");
+  if (op.points.size() < 2) f.fail("points", "an incision needs at least 2 points");
+  op.params.mode = engine::parse_incision_mode(f.optional_choice("mode", "cut", {"cut", "snap"}));
+  op.params.sliver_fraction = f.optional_positive("sliver_fraction", op.params.sliver_fraction);
+  if (op.params.sliver_fraction >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
+  op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
+  return op;
+}
+
+JoinOp parse_join(Fields& f) {
+  JoinOp op;
+  op.object = object_name(f);
+  const double max_distance = f.optional_positive("max_distance", 1.0);
+  if (f.has("chains") == f.has("sutures"))
+    f.fail("sutures", "give either chains (one suture: two chains) or sutures (a list of "
+                      "{\"a\": chain, \"b\": chain})");
+  if (f.has("chains")) {
+    auto chains = f.object_list("chains");
+    if (chains.size() != 2) f.fail("chains", "must hold exactly two chains");
+    op.sutures.push_back({parse_chain(chains[0], max_distance), parse_chain(chains[1], max_distance)});
+  } else {
+    for (auto& s : f.object_list("sutures")) {
+      auto a = s.optional_object("a");
+      auto b = s.optional_object("b");
+      if (!a) s.fail("a", "missing (the first chain)");
+      if (!b) s.fail("b", "missing (the second chain)");
+      op.sutures.push_back({parse_chain(*a, max_distance), parse_chain(*b, max_distance)});
+      s.finish();
+    }
+  }
+  return op;
+}
+
+// Default patch: glutaraldehyde-fixed pericardium of an infant repair, roughly 0.4 mm thick
+// and stiffer than the native wall (a few MPa at physiological strains).
+engine::ShellMaterial default_patch_material() {
+  engine::ShellMaterial m;
+  m.youngs_modulus = 3.0;
+  m.poisson_ratio = 0.45;
+  m.thickness = 0.4;
+  return m;
+}
+
+PatchOp parse_patch(Fields& f) {
+  PatchOp op;
+  op.object = object_name(f);
+  op.start = vec(f.required_vec3("start"));
+  op.end = vec(f.required_vec3("end"));
+  op.params.shape = engine::parse_patch_shape(
+      f.optional_choice("shape", "ellipse", {"ellipse", "diamond", "triangle"}));
+  op.params.width = f.optional_positive("width", op.params.width);
+  op.params.length = f.optional_number("length", 0.0);
+  if (op.params.length < 0.0) f.fail("length", "must be >= 0 (0 = the incision's length)");
+  op.params.edge_length = f.optional_number("edge_length", 0.0);
+  if (op.params.edge_length < 0.0) f.fail("edge_length", "must be >= 0 (0 = the lips' spacing)");
+  op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
+  op.material = default_patch_material();
+  if (auto m = f.optional_object("material")) op.material = parse_material_object(*m, op.material);
+  return op;
+}
+
+ResectOp parse_resect(Fields& f) {
+  ResectOp op;
+  op.object = object_name(f);
+  for (auto& p : f.object_list("planes")) {
+    engine::CutPlane plane;
+    plane.origin = vec(p.required_vec3("origin"));
+    plane.normal = nonzero_normal(p, "normal");
+    p.finish();
+    op.planes.push_back(plane);
+  }
+  if (op.planes.size() > 2) f.fail("planes", "give one plane (divide) or two (resect a band)");
+  if (auto s = f.optional_vec3("seed")) op.seed = vec(*s);
+  if (op.planes.size() == 1 && !op.seed)
+    f.fail("seed", "missing: with one plane, a point in the part to remove is required");
+  op.params.radius = f.optional_positive("radius", op.params.radius);
+  op.params.sliver_fraction = f.optional_positive("sliver_fraction", op.params.sliver_fraction);
+  if (op.params.sliver_fraction >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
+  op.anastomosis = f.optional_bool("anastomosis", false);
+  if (op.anastomosis && op.planes.size() != 2)
+    f.fail("anastomosis", "needs two planes (two loose ends to suture)");
+  if (auto a = f.optional_vec3("align")) op.align = vec(*a);
+  return op;
+}
+
+MeasureOp parse_measure(Fields& f) {
+  MeasureOp op;
+  op.object = object_name(f);
+  op.name = f.required_string("name");
+  if (f.has("plane") == f.has("centreline"))
+    f.fail("plane", "give either plane {origin, normal} or centreline [points]");
+  if (auto p = f.optional_object("plane")) {
+    engine::Plane plane;
+    plane.origin = vec(p->required_vec3("origin"));
+    plane.normal = nonzero_normal(*p, "normal");
+    p->finish();
+    op.plane = plane;
+  } else {
+    op.centreline = points(f, "centreline");
+    if (op.centreline.size() < 2) f.fail("centreline", "needs at least 2 points");
+    op.stations = f.optional_int("stations", op.stations, 1, 10000);
+  }
+  op.max_radius = f.optional_number("max_radius", 0.0);
+  if (op.max_radius < 0.0) f.fail("max_radius", "must be >= 0 (0 = unlimited)");
+  return op;
+}
+
+}  // namespace
+
+const std::vector<OpParser>& surgery_op_parsers() {
+  static const std::vector<OpParser> parsers = {
+      {"incise", [](Fields& f, const std::filesystem::path&) -> Op { return parse_incise(f); }},
+      {"join", [](Fields& f, const std::filesystem::path&) -> Op { return parse_join(f); }},
+      {"patch", [](Fields& f, const std::filesystem::path&) -> Op { return parse_patch(f); }},
+      {"resect", [](Fields& f, const std::filesystem::path&) -> Op { return parse_resect(f); }},
+      {"measure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_measure(f); }},
+      {"undo", [](Fields&, const std::filesystem::path&) -> Op { return UndoOp{}; }},
+      {"redo", [](Fields&, const std::filesystem::path&) -> Op { return RedoOp{}; }},
+  };
+  return parsers;
+}
+
+}  // namespace sutura::app::detail

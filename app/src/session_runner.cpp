@@ -1,0 +1,97 @@
+#include "sutura/app/session_runner.hpp"
+
+#include "replay_run.hpp"
+
+namespace sutura::app {
+
+using nlohmann::json;
+using clock_type = std::chrono::steady_clock;
+
+struct SessionRunner::Checkpoint {
+  Workspace workspace;
+  json actions, outputs, probes, checks, measurements;
+  std::vector<Workspace> undo_stack, redo_stack;
+};
+
+// The Run refers to the session header and options, so they live next to it at a fixed
+// address (the Impl is never moved).
+struct SessionRunner::Impl {
+  Session header;
+  ReplayOptions options;
+  detail::Run run;
+  clock_type::time_point start = clock_type::now();
+
+  Impl(Session h, ReplayOptions o)
+      : header(std::move(h)), options(std::move(o)),
+        run{header, options, {}, {}, json::array(), json::array()} {}
+  [[nodiscard]] double elapsed() const {
+    return std::chrono::duration<double>(clock_type::now() - start).count();
+  }
+};
+
+SessionRunner::SessionRunner(std::filesystem::path session_file, std::string description,
+                             ReplayOptions options) {
+  Session header;
+  header.file = std::move(session_file);
+  header.description = std::move(description);
+  std::filesystem::create_directories(options.out_dir);
+  impl_ = std::make_unique<Impl>(std::move(header), std::move(options));
+}
+
+SessionRunner::~SessionRunner() = default;
+
+json SessionRunner::execute(const Action& a) {
+  detail::Run& run = impl_->run;
+  const auto t0 = clock_type::now();
+  json details;
+  try {
+    details = std::visit(
+        [&](const auto& op) -> json {
+          if constexpr (std::is_same_v<std::decay_t<decltype(op)>, ReportOp>)
+            return run.execute(op, impl_->elapsed());
+          else
+            return run.execute(op);
+        },
+        a.op);
+  } catch (const std::exception& e) {
+    throw SessionError(impl_->header.file.string(), a.line, a.name, "", e.what());
+  }
+  details["line"] = a.line;
+  details["op"] = a.name;
+  details["seconds"] = std::chrono::duration<double>(clock_type::now() - t0).count();
+  run.actions.push_back(details);
+  return details;
+}
+
+const Workspace& SessionRunner::workspace() const { return impl_->run.workspace; }
+
+const ReplayOptions& SessionRunner::options() const { return impl_->options; }
+
+json SessionRunner::report(const std::string& status, const std::string& error) const {
+  return impl_->run.report(status, error, impl_->elapsed());
+}
+
+void SessionRunner::write_report(const json& report) {
+  impl_->run.write_report("report.json", report);
+}
+
+std::shared_ptr<const SessionRunner::Checkpoint> SessionRunner::checkpoint() const {
+  const detail::Run& r = impl_->run;
+  return std::make_shared<const Checkpoint>(Checkpoint{r.workspace, r.actions, r.outputs,
+                                                      r.probes, r.checks, r.measurements,
+                                                      r.undo_stack, r.redo_stack});
+}
+
+void SessionRunner::restore(const Checkpoint& c) {
+  detail::Run& r = impl_->run;
+  r.workspace = c.workspace;
+  r.actions = c.actions;
+  r.outputs = c.outputs;
+  r.probes = c.probes;
+  r.checks = c.checks;
+  r.measurements = c.measurements;
+  r.undo_stack = c.undo_stack;
+  r.redo_stack = c.redo_stack;
+}
+
+}  // namespace sutura::app

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# GUI test: runs the real `sutura gui` window under its own Xvfb server and drives it with a
+# scripted-input file (events go through the same input queue as real ones), then checks
+# that the recorded session replays headlessly to the same geometry (position hashes in the
+# GUI's report.json and the replay's). Leaves the window screenshots in OUT.
+#   run_gui_test.sh SUTURA_EXE SCRIPT OUT
+set -euo pipefail
+exe=$1 script=$2 out=$3
+rm -rf "$out"
+mkdir -p "$out"
+
+# A display of our own: Xvfb picks a free number and writes it to fd 3 once it accepts
+# connections (safe when several GUI tests start at once).
+Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
+xvfb_pid=$!
+trap 'kill "$xvfb_pid" 2>/dev/null || true' EXIT
+for _ in $(seq 200); do [ -s "$out/display" ] && break; sleep 0.05; done
+display=$(tr -d '[:space:]' <"$out/display")
+[ -n "$display" ] || { echo "gui test: Xvfb did not start" >&2; cat "$out/xvfb.log" >&2; exit 1; }
+
+# OUT/ and SRC/ in the script stand for the output directory and the script's directory.
+src=$(cd "$(dirname "$script")" && pwd)
+sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
+DISPLAY=":${display}" "$exe" gui --out "$out" --record "$out/recorded.jsonl" \
+  --script "$out/script.jsonl" --width 1400 --height 900
+
+for f in window.png gui_snapshot.png report.json recorded.jsonl; do
+  [ -s "$out/$f" ] || { echo "gui test: $out/$f missing" >&2; exit 1; }
+done
+
+"$exe" replay "$out/recorded.jsonl" --out "$out/replayed" --quiet
+gui_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/report.json")
+replay_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/replayed/report.json")
+echo "GUI:    $gui_hashes"
+echo "replay: $replay_hashes"
+[ -n "$gui_hashes" ] && [ "$gui_hashes" = "$replay_hashes" ] || {
+  echo "gui test: the replayed session does not reproduce the GUI's geometry" >&2
+  exit 1
+}
+cmp "$out/gui_snapshot.png" "$out/replayed/gui_snapshot.png" || {
+  echo "gui test: the replayed snapshot differs from the GUI's" >&2
+  exit 1
+}
+if [ -e "$out/meshes/result.obj" ]; then
+  cmp "$out/meshes/result.obj" "$out/replayed/meshes/result.obj" || {
+    echo "gui test: the replayed mesh export differs from the GUI's" >&2
+    exit 1
+  }
+fi
+echo "gui test: ok ($out)"

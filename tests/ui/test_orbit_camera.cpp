@@ -1,0 +1,51 @@
+// The GUI camera: fitting matches the snapshot camera, and picking rays and projection
+// are inverse to each other.
+#include <gtest/gtest.h>
+
+#include "sutura/ui/orbit_camera.hpp"
+
+using namespace sutura;
+
+namespace {
+
+const std::array<render::Point3, 2> kBounds = {{{-4, -4, 0}, {4, 4, 30}}};
+
+engine::Vec3 vec(const render::Point3& p) { return {p[0], p[1], p[2]}; }
+
+}  // namespace
+
+TEST(OrbitCamera, FitMatchesTheSnapshotCamera) {
+  ui::OrbitCamera cam;
+  cam.fit(kBounds, 1.5f);
+  const render::Camera want = render::fit_camera(kBounds, 1.5f);
+  const render::Camera got = cam.camera();
+  EXPECT_LT((vec(got.eye) - vec(want.eye)).norm(), 1e-3);
+  EXPECT_LT((vec(got.target) - vec(want.target)).norm(), 1e-4);
+}
+
+TEST(OrbitCamera, RayThroughCentreLooksAtTarget) {
+  ui::OrbitCamera cam;
+  cam.fit(kBounds, 1.0f);
+  const engine::Ray r = cam.ray_through(399.5f, 399.5f, 800, 800);
+  const render::Camera c = cam.camera();
+  const engine::Vec3 to_target = (vec(c.target) - vec(c.eye)).normalized();
+  EXPECT_NEAR(r.direction.dot(to_target), 1.0, 1e-9);
+  EXPECT_LT((r.origin - vec(c.eye)).norm(), 1e-4);
+}
+
+TEST(OrbitCamera, ProjectInvertsRayThrough) {
+  ui::OrbitCamera cam;
+  cam.fit(kBounds, 1.6f);
+  cam.orbit(40, -25);
+  cam.pan(10, 5, 900);
+  cam.zoom(2);
+  for (auto [x, y] : {std::pair{100.0f, 200.0f}, {700.0f, 50.0f}, {1300.0f, 880.0f}}) {
+    const engine::Ray r = cam.ray_through(x, y, 1440, 900);
+    std::array<float, 2> px{};
+    ASSERT_TRUE(cam.project(r.origin + 37.0 * r.direction, 1440, 900, px));
+    EXPECT_NEAR(px[0], x, 1e-2);
+    EXPECT_NEAR(px[1], y, 1e-2);
+  }
+  std::array<float, 2> px{};
+  EXPECT_FALSE(cam.project(vec(cam.camera().eye) - 5.0 * (vec(cam.camera().target) - vec(cam.camera().eye)), 100, 100, px));
+}

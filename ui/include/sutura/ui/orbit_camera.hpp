@@ -1,0 +1,43 @@
+#pragma once
+// The GUI's camera: orbits around a target (yaw about world +z, pitch towards it), pans in
+// the view plane and zooms by distance; turns a window pixel into a picking ray.
+#include <array>
+
+#include "sutura/engine/geometry/bvh.hpp"
+#include "sutura/render/camera.hpp"
+
+namespace sutura::ui {
+
+class OrbitCamera {
+ public:
+  /// Looks at the centre of `bounds` from the default snapshot direction, backed off so
+  /// the bounding sphere fits a viewport of `aspect` (width / height).
+  void fit(const std::array<render::Point3, 2>& bounds, float aspect);
+  /// Rotates by a mouse drag of (dx, dy) pixels (0.3 degrees per pixel); pitch stays within
+  /// +-89 degrees.
+  void orbit(float dx_px, float dy_px);
+  /// Moves eye and target in the view plane so the point under the cursor follows a drag of
+  /// (dx, dy) pixels in a viewport `height_px` tall.
+  void pan(float dx_px, float dy_px, float height_px);
+  /// Scroll: each step towards the target shrinks the distance by 10 % (negative: away).
+  void zoom(float steps);
+
+  [[nodiscard]] render::Camera camera() const;
+  /// Ray from the eye through pixel (x, y) of a width x height viewport, (0, 0) top-left
+  /// (window coordinates); the direction has unit length.
+  [[nodiscard]] engine::Ray ray_through(float x, float y, float width, float height) const;
+  /// Window pixel (top-left origin) where world point `p` shows; false when it is behind
+  /// the eye.
+  [[nodiscard]] bool project(const engine::Vec3& p, float width, float height,
+                             std::array<float, 2>& pixel) const;
+
+ private:
+  [[nodiscard]] engine::Vec3 forward() const;  ///< unit, from eye to target
+  engine::Vec3 target_ = engine::Vec3::Zero();
+  double distance_ = 50.0;   ///< mm from target to eye
+  double yaw_ = 0.0;         ///< radians about +z
+  double pitch_ = 0.0;       ///< radians; positive looks down
+  double fov_y_deg_ = 35.0;
+};
+
+}  // namespace sutura::ui

@@ -1,0 +1,110 @@
+#pragma once
+// Turns GUI actions into session ops and runs them: every action is (1) parsed and checked,
+// (2) appended to the recording session file and flushed, (3) executed by the same
+// SessionRunner as `sutura replay`. A failed or cancelled action is taken back (workspace
+// restored to its checkpoint, line removed from the file), so the file always replays to
+// what the window shows.
+//
+// Long ops (simulate, solve) run on a worker thread; the main thread keeps drawing, reads
+// the progress and live positions, and may pause, resume or cancel. While the worker runs,
+// workspace() must not be read and no other op may start (busy() is true).
+#include <atomic>
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sutura/app/session_runner.hpp"
+#include "sutura/ui/session_recorder.hpp"
+
+namespace sutura::ui {
+
+/// What the worker reports while a long op runs (copied out under a lock).
+struct LiveProgress {
+  std::string op;          ///< op name, e.g. "simulate"
+  std::string phase;       ///< RunProgress::phase
+  int step = 0;
+  int steps = 0;
+  double fraction = 0.0;
+  bool paused = false;
+  /// Latest positions by object name (only objects being simulated).
+  std::vector<std::pair<std::string, std::vector<engine::Vec3>>> positions;
+  std::uint64_t positions_revision = 0;  ///< increments whenever positions change
+};
+
+/// The outcome of one action.
+struct ActionOutcome {
+  std::string op;
+  bool ok = false;
+  bool cancelled = false;
+  std::string message;  ///< error text when !ok
+  nlohmann::json details;
+};
+
+class SessionController {
+ public:
+  /// `recorder` receives every action; `options` configure the runner (out_dir, ...).
+  /// on_progress is owned by the controller.
+  SessionController(SessionRecorder recorder, app::ReplayOptions options);
+  ~SessionController();  ///< cancels and joins a running worker
+  SessionController(const SessionController&) = delete;
+  SessionController& operator=(const SessionController&) = delete;
+
+  /// Runs the actions of an existing session (already in the recorder's file) to its last
+  /// state, without recording them again. Throws SessionError when one fails.
+  void replay_existing(const app::Session& session);
+
+  /// Records and runs `op` on this thread. Never throws for a bad op: the outcome says what
+  /// went wrong (parse errors are not recorded at all). Must not be called while busy().
+  ActionOutcome run(const nlohmann::json& op);
+  /// Records `op` and starts it on the worker thread; false (and `why`) when it does not
+  /// parse. Must not be called while busy().
+  bool start(const nlohmann::json& op, std::string& why);
+  /// Main thread, once per frame: the outcome of a worker op that has ended (joined), if any.
+  std::optional<ActionOutcome> poll();
+
+  /// Writes out_dir/report.json for the state now (the same content `sutura replay` of the
+  /// recorded file writes, timings aside). Must not be called while busy(). Throws on I/O errors.
+  void write_report();
+
+  [[nodiscard]] bool busy() const { return worker_.joinable(); }
+  void set_paused(bool paused);
+  void cancel();  ///< asks the running op to stop; poll() then reports it cancelled
+  [[nodiscard]] LiveProgress progress() const;
+
+  /// The objects; only while !busy(). revision() increments after every change.
+  [[nodiscard]] const app::Workspace& workspace() const { return runner_.workspace(); }
+  [[nodiscard]] std::uint64_t revision() const { return revision_; }
+  [[nodiscard]] const SessionRecorder& recorder() const { return recorder_; }
+  [[nodiscard]] const app::ReplayOptions& options() const { return runner_.options(); }
+
+ private:
+  app::ReplayOptions with_hook(app::ReplayOptions options);
+  bool on_progress(const app::RunProgress& p);
+  // Appends and parses; nullopt (and the outcome's message) on a parse error.
+  std::optional<app::Action> record(const nlohmann::json& op, ActionOutcome& outcome);
+  ActionOutcome execute(const app::Action& action, const app::SessionRunner::Checkpoint& before);
+
+  SessionRecorder recorder_;
+  app::SessionRunner runner_;
+  std::uint64_t revision_ = 0;
+
+  std::thread worker_;
+  std::shared_ptr<const app::SessionRunner::Checkpoint> worker_checkpoint_;
+  std::optional<ActionOutcome> worker_outcome_;  ///< set by the worker before it ends
+  std::atomic<bool> worker_done_{false};
+  std::atomic<bool> cancel_{false};
+  mutable std::mutex mutex_;
+  std::condition_variable resume_;
+  bool paused_ = false;
+  LiveProgress live_;
+};
+
+}  // namespace sutura::ui

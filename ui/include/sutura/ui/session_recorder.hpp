@@ -1,0 +1,52 @@
+#pragma once
+// Appends the GUI's actions to a session file as they happen (JSON Lines, flushed after
+// every line, so a crash loses nothing), and takes back the last line of an action that
+// failed or was cancelled, so the file always replays to what the window shows.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sutura::ui {
+
+class SessionRecorder {
+ public:
+  /// Creates `file` (parent directories too), replacing any existing one, with the header
+  /// line {"format": "sutura-session", "version": 1, "units": "mm", "description": ...}.
+  /// Throws std::runtime_error when it cannot be written.
+  static SessionRecorder create(const std::filesystem::path& file, const std::string& description);
+  /// Continues an existing session file: later lines are appended after its content (a
+  /// missing final newline is added first). Throws std::runtime_error when it cannot be opened.
+  static SessionRecorder resume(const std::filesystem::path& file);
+
+  SessionRecorder(SessionRecorder&& other) noexcept;
+  SessionRecorder& operator=(SessionRecorder&&) = delete;
+  SessionRecorder(const SessionRecorder&) = delete;
+  ~SessionRecorder();
+
+  /// Writes `op` as one line, flushed to the OS; returns its 1-based line number in the
+  /// file. Throws std::runtime_error on a write error.
+  int append(const nlohmann::json& op);
+  /// Removes the line written by the last append() (truncates the file to where it
+  /// started). Lines appended before this recorder was opened are never removed.
+  /// Throws std::logic_error when there is no such line.
+  void drop_last();
+  /// Copies the file as it is now to `target` (File > Save session as); recording goes on
+  /// in the original file. Throws std::runtime_error on failure.
+  void save_as(const std::filesystem::path& target) const;
+
+  [[nodiscard]] const std::filesystem::path& file() const { return file_; }
+  [[nodiscard]] int lines() const { return lines_; }  ///< lines in the file, header included
+
+ private:
+  SessionRecorder(std::filesystem::path file, std::FILE* out, int lines);
+
+  std::filesystem::path file_;
+  std::FILE* out_ = nullptr;
+  int lines_ = 0;
+  std::vector<long> line_starts_;  ///< byte offsets of the lines appended by this recorder
+};
+
+}  // namespace sutura::ui

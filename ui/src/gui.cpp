@@ -1,0 +1,257 @@
+// run_gui: window, ImGui and the frame loop.
+#include "sutura/ui/gui.hpp"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <ctime>
+#include <iostream>
+
+#include "gui_state.hpp"
+#include "input_events.hpp"
+#include "panels.hpp"
+#include "script_player.hpp"
+#include "sutura/app/session.hpp"
+#include "sutura/engine/atomic_file.hpp"
+#include "sutura/render/renderer.hpp"
+#include "viewport.hpp"
+
+namespace sutura::ui {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path default_record_path(const fs::path& out_dir) {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  return out_dir / ("session-" + std::string(stamp) + ".jsonl");
+}
+
+std::array<render::Point3, 2> bounds_of(const std::vector<ObjectArrays>& objects) {
+  render::Scene scene;
+  for (const auto& a : objects) {
+    render::SurfaceItem s;
+    s.positions = a.positions;
+    s.triangles = a.triangles;
+    scene.surfaces.push_back(s);
+  }
+  return render::scene_bounds(scene);
+}
+
+// Worker results change the stage: finished -> Inspect, failed or cancelled -> Plan.
+void finish_worker(GuiState& s) {
+  const auto outcome = s.controller.poll();
+  if (!outcome) return;
+  if (outcome->ok) {
+    s.stages.simulation_finished();
+    s.info(outcome->op + " finished in " + std::to_string(outcome->details.value("seconds", 0.0)) + " s");
+    return;
+  }
+  s.stages.simulation_cancelled();
+  if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
+  else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);
+}
+
+// View caches and picking structures follow the workspace (or the live run).
+void refresh_view(GuiState& s, float aspect) {
+  if (s.controller.busy()) {
+    s.view.apply_live(s.controller.progress());
+    return;
+  }
+  const auto field = s.stages.stage() == Stage::Inspect ? s.field : ViewField::None;
+  s.view.update(s.controller.workspace(), s.controller.revision(), field);
+  if (s.picker_revision != s.controller.revision()) {
+    std::vector<const engine::SurfaceMesh*> meshes;
+    for (const auto& o : s.controller.workspace().objects()) meshes.push_back(&o.mesh);
+    s.picker.rebuild(meshes);
+    s.picker_revision = s.controller.revision();
+  }
+  if (s.fit_requested && !s.view.current().empty()) {
+    s.camera.fit(bounds_of(s.view.current()), aspect);
+    s.fit_requested = false;
+  }
+}
+
+// Draws the 3-D view into framebuffer columns [x0, x0 + width); columns left of it (under
+// the workflow window) are cleared to the background colour.
+void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int height) {
+  const Overlays overlays = viewport_overlays(s);
+  const bool inspect = s.stages.stage() == Stage::Inspect;
+  const auto cmap = inspect ? s.view.color_map() : std::nullopt;
+  const render::Camera camera = s.camera.camera();
+  if (x0 > 0) renderer.draw(make_scene({}, {}, std::nullopt, false), camera, x0, height);
+  if (inspect && s.side_by_side) {
+    // Each half is half as wide: back off so the same objects still fit across it.
+    render::Camera wide = camera;
+    for (int k = 0; k < 3; ++k) wide.eye[k] = camera.target[k] + 2.0f * (camera.eye[k] - camera.target[k]);
+    const int half = width / 2;
+    render::RenderOptions left, right;
+    left.viewport_x = x0;
+    left.draw_legend = false;  // one legend (on the right) serves both views
+    right.viewport_x = x0 + half;
+    renderer.draw(make_scene(s.view.before(), {}, cmap, s.wireframe), wide, half, height, left);
+    renderer.draw(make_scene(s.view.current(), overlays, cmap, s.wireframe), wide, width - half,
+                  height, right);
+    return;
+  }
+  const bool before = inspect && s.show_before;
+  render::RenderOptions options;
+  options.viewport_x = x0;
+  renderer.draw(make_scene(before ? s.view.before() : s.view.current(), before ? Overlays{} : overlays,
+                           cmap, s.wireframe),
+                camera, width, height, options);
+}
+
+// "Before" / "After" over the views of the Inspect stage.
+void view_captions(const GuiState& s, float view_width) {
+  if (s.stages.stage() != Stage::Inspect) return;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float y = ImGui::GetFrameHeight() + 8.0f;
+  const ImU32 colour = IM_COL32(40, 40, 40, 255);
+  if (s.side_by_side) {
+    draw->AddText(ImVec2(s.view_left + 12.0f, y), colour, "Before");
+    draw->AddText(ImVec2(s.view_left + 0.5f * view_width + 12.0f, y), colour, "After");
+  } else {
+    draw->AddText(ImVec2(s.view_left + 12.0f, y), colour, s.show_before ? "Before" : "After");
+  }
+}
+
+}  // namespace
+
+int run_gui(const GuiOptions& options) {
+  // Recording: continue the given session, or start a new file.
+  std::optional<app::Session> existing;
+  std::optional<SessionRecorder> recorder;
+  if (!options.session.empty()) {
+    existing = app::load_session(options.session);
+    recorder.emplace(SessionRecorder::resume(options.session));
+  } else {
+    recorder.emplace(SessionRecorder::create(
+        options.record.empty() ? default_record_path(options.out_dir) : options.record,
+        "recorded by sutura gui"));
+  }
+  app::ReplayOptions replay_options;
+  replay_options.out_dir = options.out_dir;
+  SessionController controller(std::move(*recorder), replay_options);
+  if (existing) {
+    try {
+      controller.replay_existing(*existing);
+    } catch (const std::exception& e) {
+      std::cerr << "sutura: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  std::optional<ScriptPlayer> script;
+  if (!options.script.empty()) script.emplace(options.script);
+
+  render::WindowContext window(options.width, options.height, "Sutura", options.visible,
+                               options.samples);
+  auto* glfw = static_cast<GLFWwindow*>(window.native_window());
+  render::Renderer renderer(window);
+  glfwSwapInterval(0);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini next to the user's files
+  map_imgui_keys();
+  ImGui::StyleColorsLight();
+  window.make_current();
+  ImGui_ImplOpenGL3_Init("#version 330");
+
+  InputQueue input;
+  input.attach(glfw);
+  GuiState s(controller);
+  if (!controller.workspace().objects().empty()) s.stages.mesh_loaded();
+  s.info("Recording to " + controller.recorder().file().string());
+
+  std::optional<fs::path> screenshot_to;
+  int exit_code = 0;
+  auto last = std::chrono::steady_clock::now();
+  double frame_seconds = 0.0;
+  int idle_frames = 0;
+  while (!glfwWindowShouldClose(glfw) && !s.quit) {
+    // Draw continuously only while something happens: a running op gets the CPU (the view
+    // follows it at up to 10 frames per second), an idle window waits for input.
+    if (controller.busy()) glfwWaitEventsTimeout(0.1);
+    else if (script) glfwPollEvents();
+    else if (idle_frames > 3) glfwWaitEventsTimeout(0.5);
+    else glfwPollEvents();
+    idle_frames = input.empty() ? idle_frames + 1 : 0;
+    int width = 0, height = 0, fb_width = 0, fb_height = 0;
+    glfwGetWindowSize(glfw, &width, &height);
+    glfwGetFramebufferSize(glfw, &fb_width, &fb_height);
+    if (width <= 0 || height <= 0 || fb_width <= 0 || fb_height <= 0) continue;  // minimised
+    if (script) {
+      ScriptHost host{input, s, s.view_left, float(width) - s.view_left, float(height),
+                      [&](const fs::path& p) { screenshot_to = p; }};
+      script->step(host, frame_seconds);
+      if (script->failure()) {
+        std::cerr << "sutura: " << *script->failure() << "\n";
+        exit_code = 3;
+        break;
+      }
+    }
+    input.feed_imgui();
+    io.DisplaySize = ImVec2(float(width), float(height));
+    io.DisplayFramebufferScale = ImVec2(float(fb_width) / width, float(fb_height) / height);
+    const auto now = std::chrono::steady_clock::now();
+    frame_seconds = std::chrono::duration<double>(now - last).count();
+    last = now;
+    io.DeltaTime = float(std::max(frame_seconds, 1e-4));
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    s.widgets.new_frame();
+    finish_worker(s);
+    try {
+      menu_bar(s);
+      workflow_window(s);
+      message_window(s);
+      const float view_width = std::max(1.0f, float(width) - s.view_left);
+      refresh_view(s, view_width / float(height));
+      viewport_input(s, view_width, float(height));
+      view_captions(s, view_width);
+    } catch (const std::exception& e) {
+      s.error(e.what());
+    }
+    ImGui::Render();
+
+    window.make_current();  // snapshots render off-screen and leave OSMesa current
+    try {
+      const int x0 = std::clamp(int(s.view_left * float(fb_width) / float(width)), 0, fb_width - 1);
+      draw_view(s, renderer, x0, fb_width - x0, fb_height);
+    } catch (const std::exception& e) {
+      s.error(std::string("drawing the view: ") + e.what());
+    }
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    if (screenshot_to) {
+      try {
+        const auto png = render::encode_png(renderer.read_framebuffer(fb_width, fb_height));
+        if (screenshot_to->has_parent_path()) fs::create_directories(screenshot_to->parent_path());
+        engine::write_file_atomically(*screenshot_to, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+        s.info("Window saved to " + screenshot_to->string());
+      } catch (const std::exception& e) {
+        s.error(std::string("window screenshot: ") + e.what());
+      }
+      screenshot_to.reset();
+    }
+    glfwSwapBuffers(glfw);
+  }
+  if (controller.busy()) controller.cancel();
+  while (controller.busy() && !controller.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  try {
+    controller.write_report();
+  } catch (const std::exception& e) {
+    std::cerr << "sutura: error: writing the report: " << e.what() << "\n";
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext();
+  return exit_code;
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,56 @@
+#include "gui_state.hpp"
+
+#include <algorithm>
+
+#include "sutura/app/session.hpp"
+
+namespace sutura::ui {
+
+bool GuiState::has_op(const std::string& name) const {
+  const auto& ops = app::known_ops();
+  return std::find(ops.begin(), ops.end(), name) != ops.end();
+}
+
+std::optional<std::string> GuiState::missing_op(const std::string& name) const {
+  if (has_op(name)) return std::nullopt;
+  return "Not available in this build: the session op '" + name + "' does not exist yet.";
+}
+
+std::optional<std::string> GuiState::why_not(Action a, const std::string& op) const {
+  if (auto why = stages.why_disabled(a)) return why;
+  if (controller.busy() && stages.stage() != Stage::Simulate) return "An action is running.";
+  if (!op.empty()) return missing_op(op);
+  return std::nullopt;
+}
+
+const app::SceneObject* GuiState::selected() const {
+  if (controller.busy()) return nullptr;
+  const auto& objs = controller.workspace().objects();
+  return object < objs.size() ? &objs[object] : nullptr;
+}
+
+void GuiState::info(std::string text) {
+  messages.push_back({std::move(text), false});
+  while (messages.size() > 6) messages.pop_front();
+}
+
+void GuiState::error(std::string text) {
+  messages.push_back({std::move(text), true});
+  while (messages.size() > 6) messages.pop_front();
+}
+
+bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {
+  const ActionOutcome r = controller.run(op);
+  if (!r.ok) {
+    error(r.op + " failed: " + r.message);
+    return false;
+  }
+  info(done_text.empty() ? r.op + " done" : done_text);
+  if (!stages.has_mesh() && !controller.workspace().objects().empty()) {
+    stages.mesh_loaded();
+    fit_requested = true;
+  }
+  return true;
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,125 @@
+#pragma once
+// The state the GUI's panels and viewport share for one window: the session controller
+// (recording + execution), the stage machine, the camera, the planning drafts, the view
+// options and the message line. Panels are free functions over it (panels.hpp).
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "op_builders.hpp"
+#include "scene_picker.hpp"
+#include "sutura/ui/orbit_camera.hpp"
+#include "sutura/ui/session_controller.hpp"
+#include "sutura/ui/stage.hpp"
+#include "view_scene.hpp"
+#include "widgets.hpp"
+
+namespace sutura::ui {
+
+/// What a left click in the 3-D view does (Plan stage tools; Navigate only orbits).
+enum class Tool { Navigate, Incise, Suture, Fix, Patch };
+
+struct IncisionDraft {
+  std::vector<engine::Vec3> points;
+  bool snap = false;  ///< snap to edges ("snap") or cut through faces ("cut")
+};
+
+/// Two boundary chains picked as from/to points; filled in click order a.from, a.to, b.from, b.to.
+struct SutureDraft {
+  std::vector<engine::Vec3> clicks;
+};
+
+/// Fix ends: a whole boundary loop per click, or a run of boundary vertices between two
+/// clicks (following the boundary direction, mesh on the left).
+struct FixDraft {
+  bool run = false;
+  std::vector<engine::Vec3> clicks;
+};
+
+struct PatchDraft {
+  std::vector<engine::Vec3> ends;  ///< the two lip end points of the incision, in click order
+  int shape = 0;                   ///< 0 ellipse, 1 diamond, 2 triangle
+  float width = 4.0f;              ///< mm
+  float youngs_modulus = 2.0f, poisson_ratio = 0.45f, thickness = 0.5f;
+};
+
+struct MaterialDraft {
+  float youngs_modulus = 1.0f, poisson_ratio = 0.45f, thickness = 0.8f;
+};
+
+struct SimulationSettings {
+  int steps = 60;
+  float dt = 1e-3f;
+  int relax_steps = 40;
+};
+
+struct Message {
+  std::string text;
+  bool error = false;
+};
+
+struct GuiState {
+  explicit GuiState(SessionController& c) : controller(c) {}
+
+  SessionController& controller;
+  StageMachine stages;
+  OrbitCamera camera;
+  WidgetRegistry widgets;
+  ScenePicker picker;
+  std::uint64_t picker_revision = ~std::uint64_t{0};
+  ViewCache view;
+
+  std::size_t object = 0;  ///< selected object (index into the workspace)
+  Tool tool = Tool::Navigate;
+  IncisionDraft incision;
+  SutureDraft suture;
+  FixDraft fix;
+  PatchDraft patch;
+  MaterialDraft material;
+  float pressure_mmhg = 80.0f;
+  SimulationSettings simulation;
+  std::optional<Pick> hover;
+
+  // Inspect.
+  bool show_before = false;
+  bool side_by_side = false;
+  bool wireframe = false;
+  ViewField field = ViewField::None;
+  std::optional<engine::Vec3> plane_origin;
+  int plane_axis = 2;  ///< 0 x, 1 y, 2 z: normal of the cross-section plane
+  nlohmann::json last_measure;
+  int measure_count = 0;
+  char snapshot_file[128] = "gui_snapshot.png";
+  char export_file[128] = "meshes/result.obj";
+
+  // Plan: opening and generating.
+  char open_path[512] = "";
+  std::string browse_dir;
+  char new_object[64] = "a";
+
+  std::deque<Message> messages;      ///< newest last; errors stay until dismissed
+  bool fit_requested = true;
+  /// The 3-D view is the part of the window right of the workflow window (pixels from the
+  /// left edge, set each frame by workflow_window) down to the bottom.
+  float view_left = 0.0f;
+  bool quit = false;
+
+  [[nodiscard]] bool has_op(const std::string& name) const;
+  /// Why an op this build lacks cannot be used, or nullopt when it exists.
+  [[nodiscard]] std::optional<std::string> missing_op(const std::string& name) const;
+  /// The stage gate for `a`, else missing_op(op) when op is non-empty.
+  [[nodiscard]] std::optional<std::string> why_not(Action a, const std::string& op = {}) const;
+  [[nodiscard]] const app::SceneObject* selected() const;
+
+  void info(std::string text);
+  void error(std::string text);
+  /// Records and runs `op` now (SessionController::run); reports the outcome as a message.
+  /// True on success. The caller's GL context may have changed (snapshots render
+  /// off-screen): the frame loop makes the window current again before drawing.
+  bool perform(const nlohmann::json& op, const std::string& done_text = {});
+};
+
+}  // namespace sutura::ui

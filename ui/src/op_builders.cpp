@@ -1,0 +1,76 @@
+#include "op_builders.hpp"
+
+namespace sutura::ui {
+
+using nlohmann::json;
+
+json point_json(const engine::Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
+
+json generate_op(const std::string& object, const std::string& shape, const json& extra) {
+  json op = {{"op", "generate"}, {"object", object}, {"shape", shape}};
+  for (const auto& [k, v] : extra.items()) op[k] = v;
+  return op;
+}
+
+json load_op(const std::string& object, const std::string& absolute_file) {
+  return {{"op", "load"}, {"object", object}, {"file", absolute_file}};
+}
+
+json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
+                 double thickness) {
+  return {{"op", "material"}, {"object", object}, {"youngs_modulus", youngs_modulus},
+          {"poisson_ratio", poisson_ratio}, {"thickness", thickness}};
+}
+
+json fix_loop_op(const std::string& object, int loop, bool have_fix_op) {
+  return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object},
+          {"boundary", json::array({loop})}, {"dofs", json::array({"all"})}};
+}
+
+json fix_vertices_op(const std::string& object, const std::vector<int>& vertices, bool have_fix_op) {
+  return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object}, {"vertices", vertices},
+          {"dofs", json::array({"all"})}};
+}
+
+json incise_op(const std::string& object, const std::vector<engine::Vec3>& points, bool snap) {
+  json pts = json::array();
+  for (const auto& p : points) pts.push_back(point_json(p));
+  return {{"op", "incise"}, {"object", object}, {"points", pts}, {"mode", snap ? "snap" : "cut"}};
+}
+
+json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b) {
+  json chains = json::array();
+  for (const auto* c : {&a, &b})
+    chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
+  return {{"op", "join"}, {"object", object}, {"chains", chains}};
+}
+
+json patch_op(const std::string& object, const std::string& shape, const engine::Vec3& lip_start,
+              const engine::Vec3& lip_end, double width, const json& material) {
+  return {{"op", "patch"}, {"object", object}, {"shape", shape}, {"start", point_json(lip_start)},
+          {"end", point_json(lip_end)}, {"width", width}, {"material", material}};
+}
+
+json simulate_op(int steps, double dt, int relax_steps) {
+  json op = {{"op", "simulate"}, {"steps", steps}, {"dt", dt}};
+  if (relax_steps > 0) op["relax"] = {{"steps", relax_steps}};
+  return op;
+}
+
+json measure_op(const std::string& object, const std::string& name, const engine::Vec3& origin,
+                const engine::Vec3& normal) {
+  return {{"op", "measure"}, {"object", object}, {"name", name},
+          {"plane", {{"origin", point_json(origin)}, {"normal", point_json(normal)}}}};
+}
+
+json snapshot_op(const std::string& file, int width, int height, bool side_by_side,
+                 const std::string& field) {
+  return {{"op", "snapshot"}, {"file", file}, {"width", width}, {"height", height},
+          {"side_by_side", side_by_side}, {"field", field}};
+}
+
+json export_op(const std::string& object, const std::string& file) {
+  return {{"op", "export"}, {"object", object}, {"file", file}};
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,47 @@
+#pragma once
+// The session ops the GUI emits, as JSON lines in the format of docs/session-format.md.
+// Pure functions: what a click means is decided here, in one testable place.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sutura/engine/mesh.hpp"
+
+namespace sutura::ui {
+
+nlohmann::json point_json(const engine::Vec3& p);
+
+/// {"op": "generate", "object", "shape", ...extra}; extra holds shape parameters.
+nlohmann::json generate_op(const std::string& object, const std::string& shape,
+                           const nlohmann::json& extra = nlohmann::json::object());
+/// {"op": "load", "object", "file"} with an absolute file path.
+nlohmann::json load_op(const std::string& object, const std::string& absolute_file);
+nlohmann::json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
+                           double thickness);
+/// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
+/// equivalent `constrain` op with a boundary selection.
+nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);
+/// Fixes every DOF of the given vertices (a boundary run picked in the view), likewise.
+nlohmann::json fix_vertices_op(const std::string& object, const std::vector<int>& vertices,
+                               bool have_fix_op);
+nlohmann::json incise_op(const std::string& object, const std::vector<engine::Vec3>& points,
+                         bool snap);
+struct ChainEnds {
+  engine::Vec3 from, to;
+};
+nlohmann::json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b);
+nlohmann::json patch_op(const std::string& object, const std::string& shape,
+                        const engine::Vec3& lip_start, const engine::Vec3& lip_end, double width,
+                        const nlohmann::json& material);
+/// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation).
+nlohmann::json simulate_op(int steps, double dt, int relax_steps);
+/// Cross-section of `object` by a plane, reported under `name`.
+nlohmann::json measure_op(const std::string& object, const std::string& name,
+                          const engine::Vec3& origin, const engine::Vec3& normal);
+nlohmann::json snapshot_op(const std::string& file, int width, int height, bool side_by_side,
+                           const std::string& field);
+nlohmann::json export_op(const std::string& object, const std::string& file);
+
+}  // namespace sutura::ui

@@ -1,0 +1,252 @@
+// The Plan section: objects, opening meshes, planning tools, material, undo/redo.
+#include <algorithm>
+#include <filesystem>
+
+#include "panels.hpp"
+#include "suture_preview.hpp"
+
+namespace sutura::ui {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kMpaPerMmHg = 133.322e-6;
+
+void object_list(GuiState& s) {
+  const auto& objs = s.controller.workspace().objects();
+  if (objs.empty()) {
+    ImGui::TextDisabled("No objects yet: open a mesh or generate one.");
+    return;
+  }
+  for (std::size_t i = 0; i < objs.size(); ++i) {
+    const auto& o = objs[i];
+    const std::string label = o.name + "  (" + std::to_string(o.mesh.num_vertices()) + " vertices, " +
+                              std::to_string(o.mesh.num_faces()) + " faces, " +
+                              std::to_string(o.mesh.boundary_loops().size()) + " boundary loops)";
+    if (ImGui::Selectable(label.c_str(), s.object == i)) s.object = i;
+    s.widgets.note("object " + o.name);
+  }
+}
+
+// File path field with a one-level directory browser and the generators.
+void open_controls(GuiState& s) {
+  const auto why = s.why_not(Action::OpenMesh);
+  ImGui::InputText("name", s.new_object, sizeof s.new_object);
+  s.widgets.note("name");
+  ImGui::InputText("file", s.open_path, sizeof s.open_path);
+  s.widgets.note("file");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Browse")) {
+    s.browse_dir = fs::absolute(fs::path(s.open_path).has_parent_path()
+                                    ? fs::path(s.open_path).parent_path()
+                                    : fs::current_path())
+                       .lexically_normal()
+                       .string();
+    ImGui::OpenPopup("browse");
+  }
+  if (ImGui::BeginPopup("browse")) {
+    ImGui::TextUnformatted(s.browse_dir.c_str());
+    std::error_code ec;
+    if (ImGui::Selectable("..", false, ImGuiSelectableFlags_DontClosePopups))
+      s.browse_dir = fs::path(s.browse_dir).parent_path().string();
+    std::vector<fs::directory_entry> entries;
+    for (const auto& e : fs::directory_iterator(s.browse_dir, ec)) entries.push_back(e);
+    std::sort(entries.begin(), entries.end());
+    for (const auto& e : entries) {
+      const std::string ext = e.path().extension().string();
+      const bool dir = e.is_directory(ec);
+      if (!dir && ext != ".stl" && ext != ".obj" && ext != ".ply") continue;
+      const std::string label = e.path().filename().string() + (dir ? "/" : "");
+      if (ImGui::Selectable(label.c_str(), false, dir ? ImGuiSelectableFlags_DontClosePopups : 0)) {
+        if (dir) s.browse_dir = e.path().string();
+        else std::snprintf(s.open_path, sizeof s.open_path, "%s", e.path().c_str());
+      }
+    }
+    ImGui::EndPopup();
+  }
+  if (gated_button(s.widgets, "Open mesh", why))
+    s.perform(load_op(s.new_object, fs::absolute(s.open_path).lexically_normal().string()),
+              "Loaded " + std::string(s.open_path));
+  ImGui::SameLine();
+  if (gated_button(s.widgets, "Tube", why, "A generated vessel segment (radius 4 mm, 30 mm long)."))
+    s.perform(generate_op(s.new_object, "tube", {{"radius", 4.0}, {"length", 30.0}}));
+  ImGui::SameLine();
+  if (gated_button(s.widgets, "Strip", why, "A flat strip 40 x 10 mm in the z = 0 plane."))
+    s.perform(generate_op(s.new_object, "strip"));
+}
+
+void tool_choice(GuiState& s) {
+  const auto tool_radio = [&](const char* label, Tool t, const std::optional<std::string>& why) {
+    ImGui::BeginDisabled(why.has_value());
+    if (noted_radio(s.widgets, label, s.tool == t)) s.tool = t;
+    ImGui::EndDisabled();
+    if (why) tooltip_for_last_item(*why);
+    ImGui::SameLine();
+  };
+  tool_radio("Navigate", Tool::Navigate, std::nullopt);
+  tool_radio("Incise", Tool::Incise, s.why_not(Action::Incise, "incise"));
+  tool_radio("Suture", Tool::Suture, s.why_not(Action::Suture, "join"));
+  ImGui::NewLine();
+  tool_radio("Fix ends", Tool::Fix, s.why_not(Action::FixRegion));
+  tool_radio("Patch", Tool::Patch, s.why_not(Action::AddPatch, "patch"));
+  ImGui::NewLine();
+}
+
+void incise_controls(GuiState& s) {
+  ImGui::TextWrapped("Click points on the surface; Enter commits, Esc cancels. %zu point(s).",
+                     s.incision.points.size());
+  if (noted_radio(s.widgets, "cut through faces", !s.incision.snap)) s.incision.snap = false;
+  ImGui::SameLine();
+  if (noted_radio(s.widgets, "snap to edges", s.incision.snap)) s.incision.snap = true;
+  const std::optional<std::string> why =
+      s.incision.points.size() < 2 ? std::optional<std::string>("Click at least two points.") : std::nullopt;
+  if (gated_button(s.widgets, "Commit incision", why)) commit_incision(s);
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) cancel_draft(s);
+}
+
+void suture_controls(GuiState& s) {
+  static const char* kSteps[] = {"side A: click its first boundary vertex",
+                                 "side A: click its last boundary vertex",
+                                 "side B: click its first boundary vertex",
+                                 "side B: click its last boundary vertex",
+                                 "both sides chosen: Join (or Enter)"};
+  ImGui::TextWrapped("Chains run along the boundary with the mesh on their left. Next: %s.",
+                     kSteps[std::min<std::size_t>(s.suture.clicks.size(), 4)]);
+  if (const auto* obj = s.selected()) {
+    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks);
+    for (const auto& line : p.lines) ImGui::TextWrapped("%s", line.c_str());
+  }
+  const std::optional<std::string> why =
+      s.suture.clicks.size() < 4 ? std::optional<std::string>("Pick both chains first.") : std::nullopt;
+  if (gated_button(s.widgets, "Join", why)) commit_suture(s);
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel##suture")) cancel_draft(s);
+}
+
+void patch_controls(GuiState& s) {
+  static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
+  ImGui::Combo("shape", &s.patch.shape, kShapes, 3);
+  ImGui::SliderFloat("width [mm]", &s.patch.width, 1.0f, 15.0f);
+  ImGui::SliderFloat("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 20.0f);
+  ImGui::SliderFloat("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f);
+  ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
+                     s.patch.ends.size());
+  const std::optional<std::string> why =
+      s.patch.ends.size() < 2 ? std::optional<std::string>("Click both incision ends first.") : std::nullopt;
+  if (gated_button(s.widgets, "Add patch", why) && s.selected()) {
+    const json material = {{"youngs_modulus", s.patch.youngs_modulus},
+                           {"poisson_ratio", s.patch.poisson_ratio},
+                           {"thickness", s.patch.thickness}};
+    if (s.perform(patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0],
+                           s.patch.ends[1], s.patch.width, material)))
+      s.patch.ends.clear();
+  }
+}
+
+void load_controls(GuiState& s) {
+  ImGui::SliderFloat("pressure [mmHg]", &s.pressure_mmhg, -120.0f, 120.0f, "%.0f");
+  if (gated_button(s.widgets, "Apply pressure", s.why_not(Action::EditMaterial),
+                   "Follower pressure on every face, along the face normals; ramped in by the next simulation.") &&
+      s.selected())
+    s.perform({{"op", "pressure"}, {"object", s.selected()->name},
+               {"pressure", s.pressure_mmhg * kMpaPerMmHg}},
+              "Pressure of " + std::to_string(int(s.pressure_mmhg)) + " mmHg on '" + s.selected()->name + "'");
+}
+
+void material_controls(GuiState& s) {
+  ImGui::SliderFloat("E [MPa]", &s.material.youngs_modulus, 0.05f, 20.0f, "%.2f");
+  ImGui::SliderFloat("Poisson", &s.material.poisson_ratio, 0.0f, 0.49f, "%.2f");
+  ImGui::SliderFloat("wall [mm]", &s.material.thickness, 0.1f, 3.0f, "%.2f");
+  if (gated_button(s.widgets, "Apply material", s.why_not(Action::EditMaterial)) && s.selected())
+    s.perform(material_op(s.selected()->name, s.material.youngs_modulus, s.material.poisson_ratio,
+                          s.material.thickness),
+              "Material set on '" + s.selected()->name + "'");
+}
+
+}  // namespace
+
+void plan_section(GuiState& s) {
+  if (!s.controller.busy()) object_list(s);
+  if (noted_tree_node(s.widgets, "Open or generate")) {
+    open_controls(s);
+    ImGui::TreePop();
+  }
+  ImGui::Separator();
+  tool_choice(s);
+  switch (s.tool) {
+    case Tool::Navigate:
+      ImGui::TextWrapped("Left drag orbits, right drag pans, wheel zooms, F fits the view.");
+      break;
+    case Tool::Incise: incise_controls(s); break;
+    case Tool::Suture: suture_controls(s); break;
+    case Tool::Fix:
+      if (noted_radio(s.widgets, "whole loop", !s.fix.run)) s.fix.run = false;
+      ImGui::SameLine();
+      if (noted_radio(s.widgets, "boundary run", s.fix.run)) s.fix.run = true;
+      ImGui::TextWrapped(s.fix.run ? "Click the first and the last boundary vertex of the run "
+                                     "(it follows the boundary with the mesh on its left)."
+                                   : "Click near a boundary loop (a vessel end) to fix it.");
+      break;
+    case Tool::Patch: patch_controls(s); break;
+  }
+  ImGui::Separator();
+  if (noted_tree_node(s.widgets, "Material of the selected object")) {
+    material_controls(s);
+    ImGui::TreePop();
+  }
+  if (noted_tree_node(s.widgets, "Loads")) {
+    load_controls(s);
+    ImGui::TreePop();
+  }
+  if (gated_button(s.widgets, "Undo", s.why_not(Action::Undo, "undo"), "Ctrl+Z")) undo(s);
+  ImGui::SameLine();
+  if (gated_button(s.widgets, "Redo", s.why_not(Action::Redo, "redo"), "Ctrl+Y")) redo(s);
+}
+
+void commit_incision(GuiState& s) {
+  if (s.tool != Tool::Incise || s.incision.points.size() < 2 || !s.selected()) {
+    s.error("An incision needs at least two points on the selected object.");
+    return;
+  }
+  if (s.perform(incise_op(s.selected()->name, s.incision.points, s.incision.snap),
+                "Incision committed"))
+    s.incision.points.clear();
+}
+
+void commit_suture(GuiState& s) {
+  if (s.tool != Tool::Suture || s.suture.clicks.size() < 4 || !s.selected()) {
+    s.error("A suture needs two chains: click first and last vertex of each side.");
+    return;
+  }
+  const auto& c = s.suture.clicks;
+  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}), "Suture joined"))
+    s.suture.clicks.clear();
+}
+
+void cancel_draft(GuiState& s) {
+  s.fix.clicks.clear();
+  s.incision.points.clear();
+  s.suture.clicks.clear();
+  s.patch.ends.clear();
+}
+
+void undo(GuiState& s) {
+  if (auto why = s.why_not(Action::Undo, "undo")) {
+    s.error("Undo: " + *why);
+    return;
+  }
+  s.perform({{"op", "undo"}}, "Undone");
+}
+
+void redo(GuiState& s) {
+  if (auto why = s.why_not(Action::Redo, "redo")) {
+    s.error("Redo: " + *why);
+    return;
+  }
+  s.perform({{"op", "redo"}}, "Redone");
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,72 @@
+// The Simulate section: run settings, start on the worker thread, progress, pause/cancel.
+#include "panels.hpp"
+#include "sutura/app/session.hpp"
+
+namespace sutura::ui {
+
+namespace {
+
+// Why the simulate op with relaxation does not parse in this build (the `relax` field comes
+// with the surgery ops), or nullopt.
+std::optional<std::string> relax_unsupported() {
+  try {
+    app::parse_action(simulate_op(1, 1e-3, 1), "probe.jsonl", 1);
+    return std::nullopt;
+  } catch (const std::exception&) {
+    return "Not available in this build: the simulate op has no 'relax' field yet.";
+  }
+}
+
+// Relaxation needs a suture made since the last relaxing run.
+std::optional<std::string> nothing_to_relax(const GuiState& s) {
+  if (s.controller.busy()) return std::nullopt;
+  for (const auto& o : s.controller.workspace().objects())
+    if (o.sim.relax_from) return std::nullopt;
+  return "No suture since the last relaxation: the run only settles.";
+}
+
+}  // namespace
+
+void simulate_section(GuiState& s) {
+  static const std::optional<std::string> unsupported = relax_unsupported();
+  const bool running = s.controller.busy();
+  const std::optional<std::string> no_relax = unsupported ? unsupported : nothing_to_relax(s);
+  ImGui::BeginDisabled(running);
+  ImGui::SliderInt("settle steps", &s.simulation.steps, 1, 400);
+  ImGui::InputFloat("dt [s]", &s.simulation.dt, 0.0f, 0.0f, "%.4f");
+  ImGui::BeginDisabled(no_relax.has_value());
+  ImGui::SliderInt("relax steps", &s.simulation.relax_steps, 0, 200);
+  ImGui::EndDisabled();
+  if (no_relax) tooltip_for_last_item(*no_relax);
+  ImGui::EndDisabled();
+
+  if (gated_button(s.widgets, "Run simulation", s.why_not(Action::StartSimulation, "simulate"),
+                   "Relax the rest shape (s from 0 to 1), then settle; runs in the background.")) {
+    const int relax = no_relax ? 0 : s.simulation.relax_steps;
+    std::string why;
+    if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax), why)) {
+      s.stages.simulation_started();
+      s.tool = Tool::Navigate;
+      cancel_draft(s);
+    } else {
+      s.error("simulate: " + why);
+    }
+  }
+  if (running) {
+    const LiveProgress p = s.controller.progress();
+    char label[96];
+    std::snprintf(label, sizeof label, "%s  step %d of %d%s", p.phase.empty() ? "starting" : p.phase.c_str(),
+                  p.step, p.steps, p.paused ? "  (paused)" : "");
+    ImGui::ProgressBar(float(p.fraction), ImVec2(-1, 0), label);
+    if (gated_button(s.widgets, p.paused ? "Resume" : "Pause", s.why_not(Action::PauseResume)))
+      s.controller.set_paused(!p.paused);
+    ImGui::SameLine();
+    if (gated_button(s.widgets, "Cancel simulation", s.why_not(Action::CancelSimulation),
+                     "Stop and restore the state before the run."))
+      s.controller.cancel();
+  } else {
+    ImGui::TextDisabled("No simulation running.");
+  }
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,78 @@
+// Menu bar, workflow window and message line.
+#include <filesystem>
+
+#include "panels.hpp"
+
+namespace sutura::ui {
+
+void menu_bar(GuiState& s) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    static char target[512] = "session_copy.jsonl";
+    ImGui::TextUnformatted("Save session as:");
+    ImGui::InputText("##saveas", target, sizeof target);
+    if (ImGui::MenuItem("Save session as")) {
+      try {
+        s.controller.recorder().save_as(target);
+        s.info("Session saved as " + std::string(target));
+      } catch (const std::exception& e) {
+        s.error(e.what());
+      }
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit")) s.quit = true;
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Fit view", "F")) s.fit_requested = true;
+    ImGui::MenuItem("Wireframe", nullptr, &s.wireframe);
+    ImGui::EndMenu();
+  }
+  ImGui::SameLine(ImGui::GetWindowWidth() - 420.0f);
+  ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
+              s.controller.recorder().file().filename().c_str());
+  ImGui::EndMainMenuBar();
+}
+
+void workflow_window(GuiState& s) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  // Below the main menu bar (WorkPos only accounts for it from the second frame on).
+  const float top = vp->Pos.y + ImGui::GetFrameHeight() + 6.0f;
+  ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 6, top), ImGuiCond_Once);
+  ImGui::SetNextWindowSize(ImVec2(390, vp->Pos.y + vp->Size.y - top - 96), ImGuiCond_Once);
+  ImGui::Begin("Sutura");
+  static Stage shown = Stage::Inspect;  // the section of the current stage opens on changes
+  const Stage now = s.stages.stage();
+  const auto header = [&](const char* title, Stage stage) {
+    if (shown != now) ImGui::SetNextItemOpen(stage == now);
+    const bool open = ImGui::CollapsingHeader(title);
+    s.widgets.note(title);
+    return open;
+  };
+  if (header("Plan", Stage::Plan)) plan_section(s);
+  if (header("Simulate", Stage::Simulate)) simulate_section(s);
+  if (header("Inspect", Stage::Inspect)) inspect_section(s);
+  shown = now;
+  s.view_left = ImGui::GetWindowPos().x + ImGui::GetWindowWidth() + 2.0f;
+  ImGui::End();
+}
+
+void message_window(GuiState& s) {
+  if (s.messages.empty()) return;
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + 402, vp->WorkPos.y + vp->WorkSize.y - 86),
+                          ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(vp->WorkSize.x - 408, 80), ImGuiCond_Always);
+  ImGui::Begin("Messages", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize);
+  for (const auto& m : s.messages) {
+    if (m.error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.1f, 0.1f, 1.0f));
+    ImGui::TextWrapped("%s%s", m.error ? "Error: " : "", m.text.c_str());
+    if (m.error) ImGui::PopStyleColor();
+  }
+  if (ImGui::Button("Clear messages")) s.messages.clear();
+  s.widgets.note("Clear messages");
+  ImGui::SetScrollHereY(1.0f);
+  ImGui::End();
+}
+
+}  // namespace sutura::ui

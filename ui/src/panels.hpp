@@ -1,0 +1,27 @@
+#pragma once
+// The ImGui panels: menu bar, the workflow window (Plan / Simulate / Inspect sections, each
+// action gated by the stage machine and by the ops this build has) and the message line.
+#include "gui_state.hpp"
+
+namespace sutura::ui {
+
+void menu_bar(GuiState& s);
+/// The left-hand workflow window.
+void workflow_window(GuiState& s);
+void plan_section(GuiState& s);
+void simulate_section(GuiState& s);
+void inspect_section(GuiState& s);
+/// Messages at the bottom of the window: errors in red, dismissable.
+void message_window(GuiState& s);
+
+/// Commits the incision draft (Enter in the view); no-op with a message when incomplete.
+void commit_incision(GuiState& s);
+/// Commits the suture draft as a join op.
+void commit_suture(GuiState& s);
+/// Escape: drops the active tool's draft.
+void cancel_draft(GuiState& s);
+/// Ctrl+Z / Ctrl+Y.
+void undo(GuiState& s);
+void redo(GuiState& s);
+
+}  // namespace sutura::ui

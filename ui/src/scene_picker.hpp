@@ -1,0 +1,39 @@
+#pragma once
+// Picking: which object, face, point, vertex and boundary loop lie under a ray. One BVH per
+// object (engine/geometry/bvh.hpp), rebuilt when the meshes change.
+#include <optional>
+#include <vector>
+
+#include "sutura/engine/geometry/bvh.hpp"
+#include "sutura/engine/mesh.hpp"
+
+namespace sutura::ui {
+
+struct Pick {
+  std::size_t object = 0;     ///< index into the meshes given to rebuild()
+  engine::RayHit hit;
+  engine::VertexId vertex;    ///< corner of the hit face nearest to the hit point
+  /// Nearest boundary vertex when it lies within 3 mean edge lengths of the hit point, with
+  /// its loop index in SurfaceMesh::boundary_loops() order; -1 / invalid otherwise.
+  int boundary_loop = -1;
+  engine::VertexId boundary_vertex;
+};
+
+class ScenePicker {
+ public:
+  /// Rebuilds every BVH (O(F log F) in total). The meshes must outlive the next rebuild.
+  void rebuild(const std::vector<const engine::SurfaceMesh*>& meshes);
+  /// Nearest hit over all objects, or nullopt.
+  [[nodiscard]] std::optional<Pick> pick(const engine::Ray& ray) const;
+
+ private:
+  struct Entry {
+    const engine::SurfaceMesh* mesh = nullptr;
+    engine::TriangleBvh bvh;
+    std::vector<std::vector<engine::VertexId>> loops;
+    double reach = 0.0;  ///< boundary snapping distance, mm
+  };
+  std::vector<Entry> entries_;
+};
+
+}  // namespace sutura::ui

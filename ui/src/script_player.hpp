@@ -1,0 +1,61 @@
+#pragma once
+// Scripted input for tests and benchmarks (`sutura gui --script FILE`): one JSON object per
+// line, each a step run on consecutive frames. Pointer and key steps become InputEvents in
+// the same queue GLFW fills, so the GUI cannot tell them from a person's input. Steps:
+//   {"wait_frames": N}                 let N frames pass
+//   {"wait_idle": true}                wait until no action runs (a simulation finished)
+//   {"move": [x, y]}                   pointer to window pixel (top-left origin)
+//   {"move_world": [x, y, z]}          pointer to where a world point shows now
+//   {"click": [x, y]} / {"click_world": [x, y, z]} / {"click_widget": "label"}
+//                                      move there, press and release the left button
+//   {"key": "enter" | "escape" | "f" | "z" | "y", "ctrl": bool}   press and release
+//   {"type": "text"}                   characters into the focused text field
+//   {"screenshot": "file.png"}         save the window as drawn this frame (path as given)
+//   {"expect": {"stage": "Plan", "objects": N, "no_errors": true}}   fail if not so
+//   {"time_frames": N}                 print the mean frame time of the next N frames
+//   {"quit": true}
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "input_events.hpp"
+
+namespace sutura::ui {
+
+struct GuiState;
+
+/// What a step may look at and ask for.
+struct ScriptHost {
+  InputQueue& input;
+  GuiState& state;
+  float view_left = 0.0f;                                 ///< 3-D view's left edge, pixels
+  float width = 0.0f, height = 0.0f;                      ///< 3-D view's size, pixels
+  std::function<void(const std::filesystem::path&)> screenshot;  ///< after this frame is drawn
+};
+
+class ScriptPlayer {
+ public:
+  /// Reads the script; throws std::runtime_error naming the line of a malformed step.
+  explicit ScriptPlayer(const std::filesystem::path& file);
+  /// Runs this frame's part of the script. `frame_seconds` is the last frame's duration.
+  void step(ScriptHost& host, double frame_seconds);
+  [[nodiscard]] bool done() const { return next_ >= steps_.size() || failure_.has_value(); }
+  [[nodiscard]] const std::optional<std::string>& failure() const { return failure_; }
+
+ private:
+  void fail(const std::string& why);
+  bool click_at(ScriptHost& host, float x, float y);  // true when the click finished
+
+  std::vector<nlohmann::json> steps_;
+  std::size_t next_ = 0;
+  int phase_ = 0;          ///< progress within a multi-frame step
+  int frames_left_ = 0;
+  double timed_seconds_ = 0.0;
+  std::optional<std::string> failure_;
+};
+
+}  // namespace sutura::ui

@@ -1,0 +1,167 @@
+#include "viewport.hpp"
+
+#include <GLFW/glfw3.h>
+
+#include "panels.hpp"
+#include "suture_preview.hpp"
+#include "sutura/engine/surgery/boundary_chain.hpp"
+
+namespace sutura::ui {
+
+namespace {
+
+render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y()), float(p.z())}; }
+
+// Fixes the boundary run between the two clicks of the fix draft.
+void fix_run(GuiState& s, const app::SceneObject& obj) {
+  engine::ChainSpec spec;
+  spec.from = s.fix.clicks[0];
+  spec.to = s.fix.clicks[1];
+  s.fix.clicks.clear();
+  try {
+    const engine::BoundaryChain chain = engine::find_boundary_chain(obj.mesh, spec);
+    std::vector<int> ids;
+    for (auto v : chain.vertices) ids.push_back(v.value);
+    s.perform(fix_vertices_op(obj.name, ids, s.has_op("fix")),
+              "Fixed " + std::to_string(ids.size()) + " boundary vertices of '" + obj.name + "'");
+  } catch (const std::exception& e) {
+    s.error(std::string("Fix ends: ") + e.what());
+  }
+}
+
+// A click in the view with the current tool.
+void click(GuiState& s) {
+  if (!s.hover) return;
+  const Pick& h = *s.hover;
+  if (s.stages.stage() == Stage::Inspect) {
+    s.object = h.object;
+    s.plane_origin = h.hit.point;
+    return;
+  }
+  if (s.stages.stage() != Stage::Plan) return;
+  const auto* obj = s.selected();
+  if (h.object != s.object) {
+    s.object = h.object;  // first click on another object selects it
+    cancel_draft(s);
+    return;
+  }
+  const engine::Vec3 on_boundary =
+      h.boundary_vertex.valid() && obj ? obj->mesh.position(h.boundary_vertex) : h.hit.point;
+  switch (s.tool) {
+    case Tool::Navigate: break;
+    case Tool::Incise: s.incision.points.push_back(h.hit.point); break;
+    case Tool::Suture:
+      if (s.suture.clicks.size() < 4) s.suture.clicks.push_back(on_boundary);
+      break;
+    case Tool::Patch:
+      if (s.patch.ends.size() < 2) s.patch.ends.push_back(on_boundary);
+      break;
+    case Tool::Fix:
+      if (h.boundary_loop < 0 || !obj) {
+        s.error("Fix ends: click closer to a boundary loop (a vessel end or a lip).");
+        break;
+      }
+      if (!s.fix.run) {
+        s.perform(fix_loop_op(obj->name, h.boundary_loop, s.has_op("fix")),
+                  "Fixed boundary loop " + std::to_string(h.boundary_loop) + " of '" + obj->name + "'");
+        break;
+      }
+      s.fix.clicks.push_back(on_boundary);
+      if (s.fix.clicks.size() == 2) fix_run(s, *obj);
+      break;
+  }
+}
+
+void shortcuts(GuiState& s) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (ImGui::IsKeyPressed(GLFW_KEY_F, false) && !io.KeyCtrl) s.fit_requested = true;
+  if (s.stages.stage() == Stage::Plan && !s.controller.busy()) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_ENTER, false) || ImGui::IsKeyPressed(GLFW_KEY_KP_ENTER, false)) {
+      if (s.tool == Tool::Incise) commit_incision(s);
+      else if (s.tool == Tool::Suture) commit_suture(s);
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) cancel_draft(s);
+  }
+  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false)) undo(s);
+  if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Y, false)) redo(s);
+}
+
+}  // namespace
+
+void viewport_input(GuiState& s, float width, float height) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) shortcuts(s);
+  s.hover.reset();
+  if (io.WantCaptureMouse) return;
+  // Picking needs a mesh that matches the picker (not during a run, not in split views).
+  const bool can_pick = !s.controller.busy() && !s.side_by_side && !s.show_before &&
+                        s.picker_revision == s.controller.revision();
+  if (can_pick && ImGui::IsMousePosValid())
+    s.hover = s.picker.pick(s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height));
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
+    s.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);
+  if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
+  // A click is a press and release without dragging.
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 16.0f) click(s);
+}
+
+Overlays viewport_overlays(const GuiState& s) {
+  Overlays o;
+  const auto line = [&](const std::vector<engine::Vec3>& pts, render::Color c, float w) {
+    render::PolylineItem l;
+    for (const auto& p : pts) l.points.push_back(point(p));
+    l.color = c;
+    l.width_px = w;
+    o.lines.push_back(std::move(l));
+  };
+  const auto markers = [&](const std::vector<engine::Vec3>& pts, render::Color c, float size) {
+    render::PointsItem m;
+    for (const auto& p : pts) m.points.push_back(point(p));
+    m.color = c;
+    m.size_px = size;
+    o.points.push_back(std::move(m));
+  };
+  const app::SceneObject* obj = s.selected();
+  if (s.stages.stage() == Stage::Plan) {
+    if (s.tool == Tool::Incise && !s.incision.points.empty()) {
+      std::vector<engine::Vec3> preview = s.incision.points;
+      if (s.hover && s.hover->object == s.object) preview.push_back(s.hover->hit.point);
+      line(preview, {0.85f, 0.05f, 0.05f}, 3.0f);
+      markers(s.incision.points, {0.85f, 0.05f, 0.05f}, 9.0f);
+    }
+    if (s.tool == Tool::Suture && obj) {
+      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks);
+      const render::Color colors[2] = {{0.05f, 0.55f, 0.15f}, {0.55f, 0.1f, 0.7f}};
+      for (std::size_t i = 0; i < p.chains.size(); ++i) line(p.chains[i], colors[i], 5.0f);
+      markers(s.suture.clicks, {0.05f, 0.35f, 0.1f}, 10.0f);
+    }
+    if (s.tool == Tool::Patch) markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
+    if (s.tool == Tool::Fix) markers(s.fix.clicks, {0.95f, 0.75f, 0.05f}, 12.0f);
+    // Hovered boundary loop: what a Fix or Suture click would take.
+    if (s.hover && s.hover->boundary_loop >= 0 && obj && s.hover->object == s.object &&
+        (s.tool == Tool::Fix || s.tool == Tool::Suture || s.tool == Tool::Patch)) {
+      const auto loops = obj->mesh.boundary_loops();
+      std::vector<engine::Vec3> pts;
+      for (auto v : loops[static_cast<std::size_t>(s.hover->boundary_loop)]) pts.push_back(obj->mesh.position(v));
+      pts.push_back(pts.front());
+      line(pts, {1.0f, 0.55f, 0.0f}, 5.0f);
+      markers({obj->mesh.position(s.hover->boundary_vertex)}, {1.0f, 0.55f, 0.0f}, 12.0f);
+    }
+  }
+  if (s.hover) markers({s.hover->hit.point}, {0.05f, 0.05f, 0.05f}, 8.0f);
+  if (s.stages.stage() == Stage::Inspect && s.plane_origin && obj) {
+    // The cross-section plane as a square outline around its origin.
+    const double r = 0.6 * obj->mesh.bounds().diagonal().norm() / 2.0;
+    engine::Vec3 n = engine::Vec3::Zero();
+    n[s.plane_axis] = 1.0;
+    const engine::Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+    const engine::Vec3& c = *s.plane_origin;
+    line({c + r * (u + v), c + r * (u - v), c - r * (u + v), c - r * (u - v), c + r * (u + v)},
+         {0.1f, 0.4f, 0.9f}, 2.5f);
+    markers({c}, {0.1f, 0.4f, 0.9f}, 10.0f);
+  }
+  return o;
+}
+
+}  // namespace sutura::ui

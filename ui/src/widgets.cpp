@@ -1,0 +1,63 @@
+#include "widgets.hpp"
+
+namespace sutura::ui {
+
+void WidgetRegistry::note(const std::string& label) {
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  current_[label] = ImVec4(a.x, a.y, b.x, b.y);
+}
+
+std::optional<ImVec2> WidgetRegistry::centre(const std::string& label) const {
+  for (const auto* map : {&current_, &previous_}) {
+    const auto it = map->find(label);
+    if (it != map->end())
+      return ImVec2(0.5f * (it->second.x + it->second.z), 0.5f * (it->second.y + it->second.w));
+  }
+  return std::nullopt;
+}
+
+void WidgetRegistry::new_frame() {
+  previous_ = std::move(current_);
+  current_.clear();
+}
+
+void tooltip_for_last_item(const std::string& text) {
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::BeginTooltip();
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
+    ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::EndTooltip();
+  }
+}
+
+bool gated_button(WidgetRegistry& widgets, const std::string& label,
+                  const std::optional<std::string>& why_not, const char* tooltip) {
+  ImGui::BeginDisabled(why_not.has_value());
+  const bool clicked = ImGui::Button(label.c_str());
+  ImGui::EndDisabled();
+  widgets.note(label);
+  if (why_not) tooltip_for_last_item(*why_not);
+  else if (tooltip != nullptr) tooltip_for_last_item(tooltip);
+  return clicked && !why_not;
+}
+
+bool noted_checkbox(WidgetRegistry& widgets, const std::string& label, bool* value) {
+  const bool changed = ImGui::Checkbox(label.c_str(), value);
+  widgets.note(label);
+  return changed;
+}
+
+bool noted_radio(WidgetRegistry& widgets, const std::string& label, bool active) {
+  const bool clicked = ImGui::RadioButton(label.c_str(), active);
+  widgets.note(label);
+  return clicked;
+}
+
+bool noted_tree_node(WidgetRegistry& widgets, const std::string& label) {
+  const bool open = ImGui::TreeNode(label.c_str());
+  widgets.note(label);
+  return open;
+}
+
+}  // namespace sutura::ui

@@ -1,0 +1,38 @@
+#pragma once
+// Small ImGui helpers shared by the panels: buttons gated by a reason (disabled, with the
+// reason as tooltip), and a registry of where each labelled widget was drawn last frame,
+// which the test script uses to move the pointer onto a widget by its label.
+#include <map>
+#include <optional>
+#include <string>
+
+#include <imgui.h>
+
+namespace sutura::ui {
+
+class WidgetRegistry {
+ public:
+  /// Records the last ImGui item's rectangle under `label`.
+  void note(const std::string& label);
+  /// Centre of the widget drawn with `label` in the last frame, if any.
+  [[nodiscard]] std::optional<ImVec2> centre(const std::string& label) const;
+  /// Forgets widgets not drawn since the previous call (call once per frame, before drawing).
+  void new_frame();
+
+ private:
+  std::map<std::string, ImVec4> current_, previous_;
+};
+
+/// A button that is disabled when `why_not` holds a reason, which then shows as its tooltip
+/// (also `tooltip` when enabled, if given). Returns true when clicked.
+bool gated_button(WidgetRegistry& widgets, const std::string& label,
+                  const std::optional<std::string>& why_not, const char* tooltip = nullptr);
+/// Checkbox / radio button / menu item that also records its rectangle.
+bool noted_checkbox(WidgetRegistry& widgets, const std::string& label, bool* value);
+bool noted_radio(WidgetRegistry& widgets, const std::string& label, bool active);
+/// ImGui::TreeNode that records its rectangle; true when open (then call ImGui::TreePop()).
+bool noted_tree_node(WidgetRegistry& widgets, const std::string& label);
+/// Shows `text` as tooltip of the last item when hovered, also when it is disabled.
+void tooltip_for_last_item(const std::string& text);
+
+}  // namespace sutura::ui
