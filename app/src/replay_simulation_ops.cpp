@@ -276,6 +276,41 @@ json Run::execute(const ProbeOp& op) {
 }
 
 json Run::execute(const CheckOp& op) {
+  if (!op.measurement.empty()) {
+    if (!measurements.contains(op.measurement))
+      throw std::runtime_error("no measurement named '" + op.measurement +
+                               "' recorded before this check");
+    const json* v = &measurements[op.measurement];
+    std::stringstream path(op.quantity);
+    for (std::string key; std::getline(path, key, '.');) {
+      if (!v->is_object() || !v->contains(key))
+        throw std::runtime_error("measurement '" + op.measurement + "' has no quantity '" +
+                                 op.quantity + "'");
+      v = &(*v)[key];
+    }
+    if (!v->is_number())
+      throw std::runtime_error("measurement '" + op.measurement + "' quantity '" + op.quantity +
+                               "' is not a number");
+    const double got = v->get<double>();
+    double lo = 0.0, hi = 0.0;
+    if (op.range) {
+      lo = (*op.range)[0], hi = (*op.range)[1];
+    } else {
+      const double allowed = std::max(op.abs_tol, op.rel_tol * std::abs(op.value));
+      lo = op.value - allowed, hi = op.value + allowed;
+    }
+    const bool pass = got >= lo && got <= hi;
+    json j = {{"measurement", op.measurement}, {"quantity", op.quantity}, {"value", got},
+              {"min", lo}, {"max", hi}, {"pass", pass}};
+    checks.push_back(j);
+    if (!pass) {
+      std::ostringstream m;
+      m << "check failed: measurement '" << op.measurement << "' " << op.quantity << " = " << got
+        << ", expected in [" << lo << ", " << hi << "]";
+      throw std::runtime_error(m.str());
+    }
+    return j;
+  }
   if (!probes.contains(op.probe))
     throw std::runtime_error("no probe named '" + op.probe + "' recorded before this check");
   const double got = probes[op.probe][op.quantity].get<double>();

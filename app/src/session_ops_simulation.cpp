@@ -204,6 +204,24 @@ ProbeOp parse_probe(Fields& f) {
 
 CheckOp parse_check(Fields& f) {
   CheckOp op;
+  if (f.has("measurement")) {
+    if (f.has("probe")) f.fail("measurement", "give either probe or measurement");
+    op.measurement = f.required_string("measurement");
+    op.quantity = f.required_string("quantity");
+    op.range = f.optional_range("range");
+    if (op.range) {
+      if (f.has("value")) f.fail("value", "give either range or value with tolerances");
+      return op;
+    }
+    if (!f.has("value")) f.fail("value", "missing (or give range: [min, max])");
+    op.value = f.optional_number("value", 0.0);
+    op.rel_tol = f.optional_number("rel_tol", 0.0);
+    op.abs_tol = f.optional_number("abs_tol", 0.0);
+    if (op.rel_tol < 0.0) f.fail("rel_tol", "must be >= 0");
+    if (op.abs_tol < 0.0) f.fail("abs_tol", "must be >= 0");
+    if (op.rel_tol == 0.0 && op.abs_tol == 0.0) f.fail("rel_tol", "give rel_tol and/or abs_tol");
+    return op;
+  }
   op.probe = f.required_string("probe");
   op.quantity = f.optional_choice("quantity", "", {"ux", "uy", "uz", "rx", "ry", "rz", "|u|"});
   if (op.quantity.empty()) f.fail("quantity", "missing (ux, uy, uz, rx, ry, rz or |u|)");
