@@ -35,7 +35,8 @@ sutura::render::Image read_png(const fs::path& p) {
   return sutura::render::decode_png(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
 }
 
-const fs::path kDefaultSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "default.jsonl";
+// The inflated aortic segment: a quick session exercising snapshots, fields and exports.
+const fs::path kDefaultSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "inflation.jsonl";
 
 // Runs the sutura executable; returns its exit status and captures stderr.
 int run_sutura(const std::string& args, std::string* err_out) {

@@ -71,8 +71,21 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
       return m.str();
     }
     ++result.iterations;
-    if (!solver.factorize(ev.tangent))
-      return "the tangent stiffness is singular (is the structure constrained?)";
+    bool factored = solver.factorize(ev.tangent);
+    if (params.shift_indefinite && params.linear_solver == LinearSolverKind::Cholmod &&
+        (!factored || solver.last_note().find("not positive definite") != std::string::npos)) {
+      // Levenberg-Marquardt: K + mu diag(K), mu grown tenfold until the Cholesky factorisation
+      // succeeds, gives a descent direction of the energy where K is indefinite (an energy-
+      // driven run passing an instability); plain Newton would head for a saddle.
+      const Eigen::VectorXd diag = ev.tangent.diagonal().cwiseAbs().cwiseMax(1e-300);
+      for (double mu = 1e-4; mu <= 1e4; mu *= 10.0) {
+        Eigen::SparseMatrix<double> shifted = ev.tangent;
+        for (Eigen::Index i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += mu * diag[i];
+        factored = solver.factorize(shifted);
+        if (factored && solver.last_note().find("not positive definite") == std::string::npos) break;
+      }
+    }
+    if (!factored) return "the tangent stiffness is singular (is the structure constrained?)";
     Eigen::VectorXd du;
     if (!solver.solve(-ev.residual, du)) return "the linear solve failed: " + solver.last_note();
     const double s0 = du.dot(ev.residual);

@@ -63,6 +63,8 @@ void check(const ShellSystem& sys, const RestState& rest, const RestState& y0,
     throw InvalidArgument("s_end must be in [s_start, 1]");
   if (p.settle_steps < 0) throw InvalidArgument("settle_steps must be >= 0");
   if (p.max_cuts < 0) throw InvalidArgument("max_cuts must be >= 0");
+  if (!(p.increment_tolerance > 0.0 && p.increment_tolerance < 1.0))
+    throw InvalidArgument("increment_tolerance must be in (0, 1)");
 }
 
 double residual_norm(const ShellSystem& sys, const ShellState& s) {
@@ -91,6 +93,9 @@ StaticSolverParams increment_params(const RelaxationParams& params, const Scales
   sp.lambda_start = sp.lambda_end = 1.0;
   sp.load_steps = 1;
   sp.energy_reference = std::max(sp.energy_reference, scales.energy);
+  // A relaxation minimises energy as the rest shape moves; a patch or a stretched stump may
+  // buckle on the way, where the plain Newton direction is not a descent direction.
+  sp.shift_indefinite = true;
   return sp;
 }
 
@@ -132,7 +137,9 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     const double s_next = s + ds >= p.s_end - 1e-9 ? p.s_end : s + ds;
     rest = rest_at(y0, x0, s_next);
     const ShellState good = state;
-    const StaticResult r = solve_static(sys, state, increment_params(p, scales));
+    StaticSolverParams sp = increment_params(p, scales);
+    if (s_next < p.s_end) sp.tolerance = std::max(sp.tolerance, p.increment_tolerance);
+    const StaticResult r = solve_static(sys, state, sp);
     result.newton_iterations += r.iterations;
     if (!r.converged) {
       state = good;

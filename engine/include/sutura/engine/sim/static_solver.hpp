@@ -31,6 +31,12 @@ struct StaticSolverParams {
   /// (settling after a relaxation) needs it: relative to a round-off first residual the
   /// tolerance would be unreachable.
   double force_reference = 0.0;
+  /// Cholmod only: where the tangent is not positive definite, solve with K + mu diag(K)
+  /// (mu from 1e-4, tenfold until positive definite; Levenberg-Marquardt) so every step is a
+  /// descent direction of the energy. For runs that minimise an energy through instabilities
+  /// (the rest-shape relaxation); off for load-driven analyses (benchmarks pass limit points
+  /// on the true tangent).
+  bool shift_indefinite = false;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
   /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the stiffness of

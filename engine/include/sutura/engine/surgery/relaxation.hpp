@@ -49,6 +49,10 @@ struct RelaxationParams {
   bool settle = true;
   int settle_steps = 20;   ///< >= 0, Dynamic only
   int max_cuts = 6;        ///< a failed static increment is retried with half the increment this often
+  /// Relative Newton tolerance of the intermediate static increments, in (0, 1): they only
+  /// carry the shape along the path; the last increment and the settling solve use
+  /// statics.tolerance.
+  double increment_tolerance = 1e-6;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
 };

@@ -1,0 +1,132 @@
+// Surgery ops through the session layer: clear errors for bad requests (naming line and op),
+// undo/redo, both shell models on the same joining session, determinism.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sutura/app/replay.hpp"
+#include "sutura/app/report.hpp"
+#include "sutura/app/session.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sutura::app;
+
+const std::string kHeader = "{\"format\": \"sutura-session\", \"version\": 1}\n";
+const std::string kTube =
+    "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+    "\"segments_around\": 24, \"segments_along\": 20}\n";
+
+fs::path scratch(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("sutura_surgery_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+ReplayResult run(const std::string& text, const std::string& name) {
+  const fs::path dir = scratch(name);
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  return replay(parse_session(text, dir / "s.jsonl"), o);
+}
+
+// The error of a session whose last line fails, with its line number checked.
+std::string failure(const std::string& text, int line) {
+  try {
+    run(text, "fail");
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    return e.what();
+  }
+  ADD_FAILURE() << "the session did not fail";
+  return {};
+}
+
+std::string two_strips_text() {
+  std::ifstream in(fs::path(SUTURA_ASSETS_DIR) / "sessions" / "two_strips.jsonl");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(SurgeryOps, BadRequestsNameTheLineTheOpAndTheProblem) {
+  std::string e = failure(kHeader + kTube +
+                              "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 5], [9, 0, 12]]}\n",
+                          3);
+  EXPECT_NE(e.find("op 'incise'"), std::string::npos) << e;
+  EXPECT_NE(e.find("off the surface"), std::string::npos) << e;
+
+  e = failure(kHeader + kTube +
+                  "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 5], [0, 4, 15], [-4, 0, 15], "
+                  "[0, 4, 5], [4, 0, 15]], \"mode\": \"snap\"}\n",
+              3);
+  EXPECT_NE(e.find("crosses itself"), std::string::npos) << e;
+
+  const std::string slit =
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 6], [4, 0, 14]], \"mode\": \"snap\"}\n";
+  e = failure(kHeader + kTube + slit +
+                  "{\"op\": \"join\", \"object\": \"t\", \"chains\": [{\"from\": [4, 0, 6], \"to\": [4, 0, 14]}, "
+                  "{\"from\": [4, 0, 6], \"to\": [4, 0, 14]}]}\n",
+              4);
+  EXPECT_NE(e.find("op 'join'"), std::string::npos) << e;
+  EXPECT_NE(e.find("overlaps"), std::string::npos) << e;
+
+  e = failure(kHeader + kTube + slit +
+                  "{\"op\": \"join\", \"object\": \"t\", \"chains\": [{\"loop\": [4, 0, 0]}, "
+                  "{\"from\": [4, 0, 6], \"to\": [4, 0, 14]}]}\n",
+              4);
+  EXPECT_NE(e.find("closed loop"), std::string::npos) << e;
+
+  e = failure(kHeader + kTube +
+                  "{\"op\": \"join\", \"object\": \"t\", \"chains\": [{\"from\": [4, 0, 0]}]}\n",
+              3);
+  EXPECT_NE(e.find("exactly two chains"), std::string::npos) << e;  // checked while parsing
+
+  e = failure(kHeader + kTube + "{\"op\": \"simulate\", \"relax\": {\"steps\": 3}}\n", 3);
+  EXPECT_NE(e.find("nothing to relax"), std::string::npos) << e;
+}
+
+TEST(SurgeryOps, UndoReturnsTheIdenticalMeshAndRedoTheEdit) {
+  const std::string incise =
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 5.3], [0, 4, 12.7]]}\n";
+  const ReplayResult before = run(kHeader + kTube, "u0");
+  const ReplayResult cut = run(kHeader + kTube + incise, "u1");
+  const ReplayResult undone = run(kHeader + kTube + incise + "{\"op\": \"undo\"}\n", "u2");
+  const ReplayResult redone =
+      run(kHeader + kTube + incise + "{\"op\": \"undo\"}\n{\"op\": \"redo\"}\n", "u3");
+  const auto& m0 = before.workspace.find("t")->mesh;
+  const auto& m2 = undone.workspace.find("t")->mesh;
+  EXPECT_EQ(m2.faces(), m0.faces());
+  EXPECT_EQ(position_hash(m2), position_hash(m0));
+  EXPECT_EQ(position_hash(redone.workspace.find("t")->mesh), position_hash(cut.workspace.find("t")->mesh));
+  EXPECT_NE(cut.workspace.find("t")->mesh.num_vertices(), m0.num_vertices());
+  const std::string e = failure(kHeader + kTube + "{\"op\": \"redo\"}\n", 3);
+  EXPECT_NE(e.find("nothing to redo"), std::string::npos) << e;
+}
+
+TEST(SurgeryOps, TwoStripsJoinWithBothShellModels) {
+  // The bundled Fig. 2.4 session checks the seam position and the uniform stretch itself.
+  std::string text = two_strips_text();
+  const ReplayResult m1 = run(text, "m1");
+  std::string discrete = text;
+  for (std::size_t at = 0; (at = discrete.find("\"relax\":", at)) != std::string::npos; at += 30)
+    discrete.insert(at, "\"model\": \"discrete\", ");
+  const ReplayResult m2 = run(discrete, "m2");
+  for (const auto* r : {&m1, &m2}) {
+    EXPECT_EQ(r->report["status"], "ok");
+    EXPECT_NEAR(r->report["probes"]["strip1_middle"]["ux"].get<double>(), 0.5, 0.005);
+  }
+}
+
+TEST(SurgeryOps, JoiningSessionIsDeterministic) {
+  const std::string text = two_strips_text();
+  const ReplayResult a = run(text, "d1"), b = run(text, "d2");
+  EXPECT_EQ(position_hash(a.workspace.find("strips")->mesh),
+            position_hash(b.workspace.find("strips")->mesh));
+}
+
+}  // namespace
