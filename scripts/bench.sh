@@ -14,3 +14,15 @@ for b in "$root"/build/tests/bench/bench_*; do
   fi
   "$b" --benchmark_counters_tabular=true
 done
+# Surgical repairs end to end: wall time of every bundled planning session and of the large
+# ones (assets/sessions/large, not run by ctest), from the start of the replay to equilibrium.
+echo "== repair sessions (wall time of sutura replay, seconds)"
+out="$(mktemp -d)"
+for s in "$root"/assets/sessions/*.jsonl "$root"/assets/sessions/large/*.jsonl; do
+  start=$(date +%s%N)
+  status=ok
+  "$root/build/app/sutura" replay "$s" --out "$out/$(basename "$s" .jsonl)" -q || status=failed
+  ms=$(( ($(date +%s%N) - start) / 1000000 ))
+  printf '%-40s %6d.%01d  %s\n' "$(basename "$s")" $((ms / 1000)) $((ms % 1000 / 100)) "$status"
+done
+rm -rf "$out"
