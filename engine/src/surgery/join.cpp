@@ -99,6 +99,32 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
   }
 
   detail::TriangleSoup soup(mesh);
+  // Where both chains end at one shared vertex e (a slit end, or the corner where a flap
+  // meets its bed), the suture closes e's fan like a cone: the faces of e between its two
+  // chain edges close up around it, which needs at least three of them (with two, merging the
+  // neighbours would stack both faces onto one edge; with one, collapse it). Too small a fan
+  // gets a vertex on its outer edge, which adds one face at e each time.
+  auto widen_fan = [&soup](int e) {
+    for (int guard = 0; guard < 4; ++guard) {
+      int count = 0, first = -1;
+      for (std::size_t f = 0; f < soup.num_faces(); ++f)
+        for (const int c : soup.face(f))
+          if (c == e) {
+            ++count;
+            if (first < 0) first = int(f);
+          }
+      if (count >= 3 || first < 0) return;
+      const FaceIndices& t = soup.face(first);
+      int k = 0;
+      while (t[k] != e) ++k;
+      soup.split_edge(t[(k + 1) % 3], t[(k + 2) % 3], 0.5);
+    }
+  };
+  for (const auto& [a, b] : pairs) {
+    if (a.closed) continue;
+    if (a.vertices.front() == b.vertices.back()) widen_fan(a.vertices.front().value);
+    if (a.vertices.back() == b.vertices.front()) widen_fan(a.vertices.back().value);
+  }
   JoinResult result;
   std::vector<std::vector<std::pair<int, int>>> pair_vertices(pairs.size());
   for (std::size_t p = 0; p < pairs.size(); ++p) {

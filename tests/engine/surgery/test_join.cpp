@@ -179,6 +179,22 @@ TEST(Join, PatchCornerMeetingTwoLipsAndAnotherChainIsAOneToThreeMapping) {
   EXPECT_EQ(j2.mesh.boundary_loops().size(), 2u);  // the two far ends
 }
 
+TEST(Join, ClosingASmallFanAtASharedEndWidensItFirst) {
+  // A sheet whose edges e-x and y-e are sutured (x to y): e's fan has only two faces, which
+  // closing into a cone would stack onto one edge; the join widens it.
+  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0),
+                               Vec3(0, 2, 0), Vec3(0, 1, 0), Vec3(1.2, 0.9, 0.3)};
+  //                             e=0          x=1           x2=2          z=3
+  //                             y2=4         y=5           w=6
+  const SurfaceMesh m(x, {{0, 1, 6}, {1, 2, 6}, {2, 3, 6}, {6, 3, 4}, {6, 4, 5}, {0, 6, 5}});
+  const BoundaryChain a{{VertexId(0), VertexId(1)}, false};
+  const BoundaryChain b{{VertexId(5), VertexId(0)}, false};
+  const JoinResult r = join(m, {{a, b}});
+  ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+  EXPECT_FALSE(r.mesh.is_boundary(VertexId(0)));  // e is now inside the closed cone
+  EXPECT_GE(r.mesh.vertex_faces(VertexId(0)).size(), 3u);
+}
+
 TEST(Join, RejectsBadChains) {
   const SurfaceMesh m = two_strips(4, 4);
   const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
