@@ -75,6 +75,17 @@ void open_controls(GuiState& s) {
   ImGui::SameLine();
   if (gated_button(s.widgets, "Strip", why, "A flat strip 40 x 10 mm in the z = 0 plane."))
     s.perform(generate_op(s.new_object, "strip"));
+  // The bundled synthetic neonatal anatomy (assets/anatomy, `sutura generate arch`), one
+  // click away: the aortic arch with its coarctation, and the pulmonary artery.
+  const fs::path anatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
+  if (gated_button(s.widgets, "Aortic arch", why,
+                   "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces)."))
+    s.perform(load_op("aorta", (anatomy / "aorta.ply").string()), "Loaded the bundled aortic arch");
+  ImGui::SameLine();
+  if (gated_button(s.widgets, "Pulmonary artery", why,
+                   "The bundled pulmonary artery beside the arch (coarse)."))
+    s.perform(load_op("pulmonary", (anatomy / "pulmonary.ply").string()),
+              "Loaded the bundled pulmonary artery");
 }
 
 void tool_choice(GuiState& s) {
