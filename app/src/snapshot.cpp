@@ -1,5 +1,6 @@
 #include "snapshot.hpp"
 
+#include "sutura/engine/measure/vertex_fields.hpp"
 #include "sutura/engine/surgery/relaxation.hpp"
 
 #include <algorithm>
@@ -55,18 +56,8 @@ std::vector<float> element_field(Field field, const SceneObject& obj,
   const std::vector<double>& per_face = field == Field::MembraneStrain ? m.membrane_strain
                                         : field == Field::Bending      ? m.bending_curvature
                                                                        : m.energy_density;
-  std::vector<double> sum(state.num_vertices(), 0.0), weight(state.num_vertices(), 0.0);
-  for (std::size_t f = 0; f < state.num_faces(); ++f) {
-    const double a = state.face_area(engine::FaceId(f));
-    for (auto v : state.face_vertices(engine::FaceId(f))) {
-      sum[v.index()] += a * per_face[f];
-      weight[v.index()] += a;
-    }
-  }
-  std::vector<float> out(state.num_vertices());
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = weight[i] > 0.0 ? static_cast<float>(sum[i] / weight[i]) : 0.0f;
-  return out;
+  const std::vector<double> per_vertex = engine::face_to_vertex(state, per_face);
+  return std::vector<float>(per_vertex.begin(), per_vertex.end());
 }
 
 std::vector<float> field_values(Field field, const SceneObject& obj,

@@ -4,17 +4,12 @@
 #include <limits>
 #include <sstream>
 
+#include "mesh_walk.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
 
 namespace {
-
-std::string point_text(const Vec3& x) {
-  std::ostringstream os;
-  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return os.str();
-}
 
 // Loop index and position within it for every boundary vertex.
 struct LoopIndex {
@@ -77,7 +72,7 @@ BoundaryChain find_boundary_chain(const SurfaceMesh& mesh, const ChainSpec& spec
     for (const auto& loop : index.loops)
       for (const VertexId v : loop) best = std::min(best, (mesh.position(v) - p).norm());
     if (best > spec.max_distance)
-      throw InvalidArgument(std::string("chain point '") + what + "' " + point_text(p) +
+      throw InvalidArgument(std::string("chain point '") + what + "' " + detail::point_text(p) +
                             " is " + std::to_string(best) +
                             " mm from the nearest boundary vertex (limit " +
                             std::to_string(spec.max_distance) + " mm)");
@@ -120,10 +115,10 @@ BoundaryChain find_boundary_chain(const SurfaceMesh& mesh, const ChainSpec& spec
     }
   if (best.vertices.empty()) {
     if (different_loops)
-      throw InvalidArgument("chain points 'from' " + point_text(spec.from) + " and 'to' " +
-                            point_text(spec.to) + " lie on different boundary loops");
+      throw InvalidArgument("chain points 'from' " + detail::point_text(spec.from) + " and 'to' " +
+                            detail::point_text(spec.to) + " lie on different boundary loops");
     throw InvalidArgument("chain points 'from' and 'to' pick the same boundary vertex at " +
-                          point_text(mesh.position(from.front())) +
+                          detail::point_text(mesh.position(from.front())) +
                           "; use a loop chain for a whole boundary loop");
   }
   return best;

@@ -22,11 +22,6 @@ namespace {
 
 using detail::PathEvent;
 
-std::string point_text(const Vec3& x) {
-  std::ostringstream os;
-  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return os.str();
-}
 
 // Applies the events to a soup: each becomes a soup vertex (existing or inserted).
 class EventInserter {
@@ -123,7 +118,7 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     sp.push_back(closest_surface_point(mesh, points[i]));
     if (sp.back().distance > params.max_distance)
       throw InvalidArgument("incision point " + std::to_string(i + 1) + " " +
-                            point_text(points[i]) + " is off the surface: " +
+                            detail::point_text(points[i]) + " is off the surface: " +
                             std::to_string(sp.back().distance) + " mm away (limit " +
                             std::to_string(params.max_distance) + " mm)");
     pe.push_back(detail::point_event(mesh, sp.back(), params.sliver_fraction));
@@ -163,12 +158,12 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   }
   if (path.size() < 2)
     throw InvalidArgument("the incision is shorter than one mesh edge: its points all snap to "
-                          "the vertex at " + point_text(soup.position(path.front())));
+                          "the vertex at " + detail::point_text(soup.position(path.front())));
   {
     std::set<int> seen;
     for (const int v : path)
       if (!seen.insert(v).second)
-        throw InvalidArgument("the incision crosses itself at " + point_text(soup.position(v)));
+        throw InvalidArgument("the incision crosses itself at " + detail::point_text(soup.position(v)));
   }
   for (std::size_t i = 0; i + 1 < path.size(); ++i)
     if (!soup.has_edge(path[i], path[i + 1]))
@@ -188,11 +183,11 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     if (!detail::find_halfedge(refined, c[i], c[i + 1]).valid() ||
         !detail::find_halfedge(refined, c[i + 1], c[i]).valid())
       throw InvalidArgument("the incision runs along the open boundary near " +
-                            point_text(refined.position(c[i])));
+                            detail::point_text(refined.position(c[i])));
   for (std::size_t i = 1; i < m; ++i)
     if (refined.is_boundary(c[i]))
       throw InvalidArgument("the incision touches the open boundary at " +
-                            point_text(refined.position(c[i])) +
+                            detail::point_text(refined.position(c[i])) +
                             " between its ends; end it there or keep it away from the boundary");
 
   // Duplicate path vertices: interior path vertices always, ends only on the boundary (an

@@ -15,12 +15,6 @@ namespace sutura::engine {
 
 namespace {
 
-std::string point_text(const Vec3& x) {
-  std::ostringstream os;
-  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return os.str();
-}
-
 std::string suture_name(std::size_t i) { return "suture " + std::to_string(i + 1); }
 
 // Normalised arc-length parameter of every vertex of an open vertex list.
@@ -65,8 +59,8 @@ void check_chain(const SurfaceMesh& mesh, const BoundaryChain& c, const std::str
     const HalfedgeId h = detail::find_halfedge(mesh, u, v);
     if (!h.valid() || !mesh.is_boundary(h))
       throw InvalidArgument(name + " is not a run of boundary edges in the boundary direction "
-                                   "between " + point_text(mesh.position(u)) + " and " +
-                            point_text(mesh.position(v)));
+                                   "between " + detail::point_text(mesh.position(u)) + " and " +
+                            detail::point_text(mesh.position(v)));
   }
 }
 
@@ -240,7 +234,7 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
     for (int k = 0; k < 3; ++k) faces[f][k] = new_id[soup.face(f)[k]];
     if (faces[f][0] == faces[f][1] || faces[f][1] == faces[f][2] || faces[f][0] == faces[f][2])
       throw InvalidArgument("the suture would collapse the triangle at " +
-                            point_text(soup.position(soup.face(f)[0])) +
+                            detail::point_text(soup.position(soup.face(f)[0])) +
                             " (its corners are paired with each other); the chains are adjacent "
                             "there");
   }

@@ -1,5 +1,8 @@
 #pragma once
-// Small adjacency queries shared by the surgery edits.
+// Small adjacency queries and message helpers shared by the surgery edits.
+#include <sstream>
+#include <string>
+
 #include "sutura/engine/mesh.hpp"
 
 namespace sutura::engine::detail {
@@ -13,6 +16,13 @@ inline HalfedgeId find_halfedge(const SurfaceMesh& mesh, VertexId u, VertexId v)
       if (mesh.from_vertex(h) == u && mesh.to_vertex(h) == v) return h;
     }
   return HalfedgeId();
+}
+
+/// "(x, y, z)" for error messages.
+inline std::string point_text(const Vec3& x) {
+  std::ostringstream os;
+  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
+  return os.str();
 }
 
 }  // namespace sutura::engine::detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "mesh_walk.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/surgery/surface_point.hpp"
 #include "triangle_soup.hpp"
@@ -10,12 +11,6 @@
 namespace sutura::engine {
 
 namespace {
-
-std::string point_text(const Vec3& x) {
-  std::ostringstream os;
-  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return os.str();
-}
 
 // Splits every edge near the plane that it crosses; returns the refined mesh, the maps and a
 // per-vertex flag "on this cut".
@@ -126,11 +121,11 @@ ResectionResult resect(const SurfaceMesh& mesh, const std::vector<CutPlane>& pla
       const double side_face = normals[i].dot(c - planes[i].origin);
       if (side_seed * side_face < 0 && std::abs(side_face) > tol)
         throw InvalidArgument("plane " + std::to_string(i + 1) + " through " +
-                              point_text(planes[i].origin) +
+                              detail::point_text(planes[i].origin) +
                               " does not cut the surface all the way round within radius " +
                               std::to_string(params.radius) +
                               " mm (the removed region would extend past it, e.g. at " +
-                              point_text(c) + ")");
+                              detail::point_text(c) + ")");
     }
   }
   ResectionResult result;
@@ -194,7 +189,7 @@ ResectionResult resect(const SurfaceMesh& mesh, const std::vector<CutPlane>& pla
     }
     if (found.vertices.empty())
       throw InvalidArgument("plane " + std::to_string(i + 1) + " through " +
-                            point_text(planes[i].origin) +
+                            detail::point_text(planes[i].origin) +
                             " does not leave a closed cut loop (does it cross the removed region?)");
     result.loops.push_back(std::move(found));
   }

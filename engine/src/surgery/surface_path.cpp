@@ -5,6 +5,7 @@
 #include <queue>
 #include <sstream>
 
+#include "mesh_walk.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine::detail {
@@ -88,11 +89,6 @@ Vec3 event_position(const SurfaceMesh& mesh, const PathEvent& e) {
   return Vec3::Zero();
 }
 
-std::string point_text(const Vec3& x) {
-  std::ostringstream os;
-  os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";
-  return os.str();
-}
 
 }  // namespace
 
