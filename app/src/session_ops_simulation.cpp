@@ -202,6 +202,16 @@ ProbeOp parse_probe(Fields& f) {
   return op;
 }
 
+// `value` with `rel_tol` and/or `abs_tol` (both >= 0, not both 0).
+void value_with_tolerances(Fields& f, CheckOp& op) {
+  op.value = f.optional_number("value", 0.0);
+  op.rel_tol = f.optional_number("rel_tol", 0.0);
+  op.abs_tol = f.optional_number("abs_tol", 0.0);
+  if (op.rel_tol < 0.0) f.fail("rel_tol", "must be >= 0");
+  if (op.abs_tol < 0.0) f.fail("abs_tol", "must be >= 0");
+  if (op.rel_tol == 0.0 && op.abs_tol == 0.0) f.fail("rel_tol", "give rel_tol and/or abs_tol");
+}
+
 CheckOp parse_check(Fields& f) {
   CheckOp op;
   if (f.has("measurement")) {
@@ -214,24 +224,14 @@ CheckOp parse_check(Fields& f) {
       return op;
     }
     if (!f.has("value")) f.fail("value", "missing (or give range: [min, max])");
-    op.value = f.optional_number("value", 0.0);
-    op.rel_tol = f.optional_number("rel_tol", 0.0);
-    op.abs_tol = f.optional_number("abs_tol", 0.0);
-    if (op.rel_tol < 0.0) f.fail("rel_tol", "must be >= 0");
-    if (op.abs_tol < 0.0) f.fail("abs_tol", "must be >= 0");
-    if (op.rel_tol == 0.0 && op.abs_tol == 0.0) f.fail("rel_tol", "give rel_tol and/or abs_tol");
+    value_with_tolerances(f, op);
     return op;
   }
   op.probe = f.required_string("probe");
   op.quantity = f.optional_choice("quantity", "", {"ux", "uy", "uz", "rx", "ry", "rz", "|u|"});
   if (op.quantity.empty()) f.fail("quantity", "missing (ux, uy, uz, rx, ry, rz or |u|)");
   if (!f.has("value")) f.fail("value", "missing");
-  op.value = f.optional_number("value", 0.0);
-  op.rel_tol = f.optional_number("rel_tol", 0.0);
-  op.abs_tol = f.optional_number("abs_tol", 0.0);
-  if (op.rel_tol < 0.0) f.fail("rel_tol", "must be >= 0");
-  if (op.abs_tol < 0.0) f.fail("abs_tol", "must be >= 0");
-  if (op.rel_tol == 0.0 && op.abs_tol == 0.0) f.fail("rel_tol", "give rel_tol and/or abs_tol");
+  value_with_tolerances(f, op);
   return op;
 }
 

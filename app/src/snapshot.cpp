@@ -13,11 +13,6 @@ namespace sutura::app {
 
 namespace {
 
-// Distinct, print-friendly surface colours per object, in creation order.
-constexpr std::array<render::Color, 4> kObjectColors = {{{0.86f, 0.42f, 0.38f},
-                                                         {0.40f, 0.58f, 0.85f},
-                                                         {0.55f, 0.75f, 0.45f},
-                                                         {0.85f, 0.70f, 0.35f}}};
 
 // Arrays for one object in one state; the renderer's spans point into these.
 struct ObjectArrays {
@@ -208,7 +203,7 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   for (std::size_t i = 0; i < selected.size(); ++i) {
     // Colour by position in the workspace so an object keeps its colour across snapshots.
     const auto index = static_cast<std::size_t>(selected[i] - workspace.objects().data());
-    const render::Color color = kObjectColors[index % kObjectColors.size()];
+    const render::Color color = render::object_color(index);
     after.push_back(arrays_for(op, *selected[i], selected[i]->mesh, color));
     if (op.side_by_side)
       before.push_back(op.compare_rest ? rest_arrays(op, *selected[i], color)

@@ -11,11 +11,6 @@ namespace sutura::ui {
 
 namespace {
 
-// The snapshot colours, so an object looks the same in the window and in saved snapshots.
-constexpr std::array<render::Color, 4> kObjectColors = {{{0.86f, 0.42f, 0.38f},
-                                                         {0.40f, 0.58f, 0.85f},
-                                                         {0.55f, 0.75f, 0.45f},
-                                                         {0.85f, 0.70f, 0.35f}}};
 
 render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y()), float(p.z())}; }
 
@@ -95,7 +90,7 @@ void ViewCache::update(const app::Workspace& workspace, std::uint64_t revision, 
   problem_.reset();
   const auto& objects = workspace.objects();
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    const render::Color color = kObjectColors[i % kObjectColors.size()];
+    const render::Color color = render::object_color(i);
     current_.push_back(arrays_for(objects[i], true, color));
     before_.push_back(arrays_for(objects[i], false, color));
     if (field == ViewField::None) continue;

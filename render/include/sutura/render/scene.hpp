@@ -13,6 +13,16 @@ namespace sutura::render {
 /// Linear RGB in [0, 1]. Lighting is computed in linear light and images hold sRGB, so a
 /// colour c shows as 255 * srgb(c): {0.5, 0.5, 0.5} becomes (188, 188, 188).
 using Color = std::array<float, 3>;
+
+/// Distinct, print-friendly surface colours, one per object in creation order (cycled): the
+/// window and the saved snapshots use the same, so an object looks the same in both.
+inline Color object_color(std::size_t index) {
+  constexpr std::array<Color, 4> kColors = {{{0.86f, 0.42f, 0.38f},
+                                             {0.40f, 0.58f, 0.85f},
+                                             {0.55f, 0.75f, 0.45f},
+                                             {0.85f, 0.70f, 0.35f}}};
+  return kColors[index % kColors.size()];
+}
 using Point3 = std::array<float, 3>;
 
 /// A shaded triangle surface. Both sides are lit (vessel walls are seen from inside too);
