@@ -85,6 +85,15 @@ class CholmodSolver final : public LinearSolver {
     note_ = "cholmod: matrix not positive definite, used LDL^T";
     return fallback_.factorize(A);
   }
+  bool factorize_definite(const SpMat& A) override {
+    note_.clear();
+    if (!cache_.same(A)) llt_.analyzePattern(A);
+    llt_.factorize(A);
+    use_fallback_ = false;
+    if (llt_.info() == Eigen::Success) return true;
+    note_ = "cholmod: matrix not positive definite";
+    return false;
+  }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     if (use_fallback_) return fallback_.solve(b, x);
     x = llt_.solve(b);

@@ -92,7 +92,14 @@ StaticSolverParams increment_params(const RelaxationParams& params, const Scales
   StaticSolverParams sp = params.statics;
   sp.lambda_start = sp.lambda_end = 1.0;
   sp.load_steps = 1;
+  // The load factor is fixed at 1, so a retry with a smaller load increment would repeat the
+  // failed solve exactly; the relaxation retries with a smaller increment of s instead.
+  sp.max_step_cuts = 0;
   sp.energy_reference = std::max(sp.energy_reference, scales.energy);
+  // Residuals are measured against the force of the whole relaxation, not the first residual
+  // of one increment: after a few halvings that is so small that the relative tolerance
+  // drops below round-off (measured: 7e-17 N asked of a 1e-2 N joining force).
+  sp.force_reference = std::max(sp.force_reference, scales.force);
   // A relaxation minimises energy as the rest shape moves; a patch or a stretched stump may
   // buckle on the way, where the plain Newton direction is not a descent direction.
   sp.shift_indefinite = true;
@@ -129,8 +136,12 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
                               const RelaxationHook& hook, const Scales& scales) {
   RelaxationResult result;
   double s = p.s_start;
-  double ds = (p.s_end - p.s_start) / p.steps;
-  int cuts = 0, done = 0;
+  const double ds_planned = (p.s_end - p.s_start) / p.steps;
+  double ds = ds_planned;
+  // `cuts` counts consecutive halvings; after two good increments in a row a halved
+  // increment is doubled again (up to the planned one), so one hard stretch of the path does
+  // not slow down all the rest of it.
+  int cuts = 0, done = 0, streak = 0, iterations_before = 0;
   result.s_reached = s;
   while (s < p.s_end - 1e-12) {
     // The last increment lands on s_end exactly (no round-off short of 1).
@@ -152,14 +163,24 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
         return result;
       }
       ++cuts;
+      streak = 0;
       ds *= 0.5;
       continue;
+    }
+    cuts = 0;
+    if (++streak >= 2 && ds < ds_planned) {
+      ds = std::min(ds_planned, 2.0 * ds);
+      streak = 0;
     }
     s = s_next;
     result.s_reached = s;
     result.residual = r.residual;
     result.energy = r.energy;
-    RelaxationProgress pr{s, ++done, p.steps, r.residual, r.energy, "relax"};
+    ++done;
+    const int left = int(std::ceil((p.s_end - s) / ds - 1e-9));
+    RelaxationProgress pr{s, done, done + std::max(left, 0), r.residual, r.energy, "relax",
+                          result.newton_iterations - iterations_before};
+    iterations_before = result.newton_iterations;
     result.history.push_back(pr);
     if (hook && !hook(pr)) {
       result.cancelled = true;
@@ -233,13 +254,15 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
   // structure without supports settles by the dynamics alone: a static solve is singular).
   if (reaction_norm(sys, state) > 0.0) {
     const ShellState good = state;
+    const int iterations_before_settle = result.newton_iterations;
     if (!settle_static(sys, state, params, scales, result)) {
       state = good;
       result.ok = false;
       return result;
     }
+    const int settle_iterations = result.newton_iterations - iterations_before_settle;
     RelaxationProgress pr{1.0, int(result.history.size()) + 1, int(result.history.size()) + 1,
-                          result.residual, result.energy, "settle"};
+                          result.residual, result.energy, "settle", settle_iterations};
     result.history.push_back(pr);
     if (hook) hook(pr);
   }

@@ -58,6 +58,19 @@ TEST(LinearSolver, CholmodFallsBackOnIndefiniteMatrix) {
   EXPECT_LT((x - x_true).norm(), 1e-9);
 }
 
+TEST(LinearSolver, CholmodFactorizeDefiniteRefusesIndefiniteMatrixWithoutFallback) {
+  Eigen::SparseMatrix<double> A = spd(6);
+  auto s = make_linear_solver(LinearSolverKind::Cholmod);
+  ASSERT_TRUE(s->factorize_definite(A));
+  Eigen::VectorXd x_true = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0), x;
+  ASSERT_TRUE(s->solve(A * x_true, x));
+  EXPECT_LT((x - x_true).norm(), 1e-9);
+  A.coeffRef(0, 0) = -3.0;  // symmetric indefinite: no LDL^T behind the caller's back
+  EXPECT_FALSE(s->factorize_definite(A));
+  EXPECT_NE(s->last_note().find("not positive definite"), std::string::npos);
+  EXPECT_EQ(s->last_note().find("LDL"), std::string::npos);
+}
+
 TEST(LinearSolver, ParseNames) {
   EXPECT_EQ(parse_linear_solver("pcg"), LinearSolverKind::Pcg);
   EXPECT_EQ(to_string(parse_linear_solver("cholmod")), "cholmod");

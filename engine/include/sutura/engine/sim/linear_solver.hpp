@@ -31,6 +31,11 @@ class LinearSolver {
   /// Factorises (or prepares) A (symmetric; full storage). Returns false when the
   /// factorisation fails (singular matrix); the caller reports it.
   virtual bool factorize(const Eigen::SparseMatrix<double>& A) = 0;
+  /// Like factorize, but fails (returns false) instead of falling back when A is not positive
+  /// definite: for callers that shift an indefinite matrix themselves (Levenberg-Marquardt),
+  /// where a fallback factorisation would be thrown away. Solvers that cannot tell (Ldlt,
+  /// Pcg) just factorise.
+  virtual bool factorize_definite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
   /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// What happened in the last call, e.g. "cholmod fell back to LDL^T (not positive definite)".

@@ -19,7 +19,10 @@ struct StaticSolverParams {
   int load_steps = 1;            ///< >= 1
   double tolerance = 1e-8;       ///< converged when |r| <= tolerance * max(|f_ext|, |r_0|), relative
   int max_iterations = 30;       ///< Newton iterations per load step, >= 1
-  bool line_search = true;       ///< backtrack (halving, up to 10 times) while |r| does not decrease
+  /// Safeguard the Newton step: a step that raises |r| more than 1000-fold is refined by
+  /// secant steps on du.r; with shift_indefinite and no loads (energy minimisation) the step
+  /// is backtracked until the Armijo condition on the strain energy holds (up to 12 times).
+  bool line_search = true;
   int max_step_cuts = 6;         ///< a failed load step is retried with half the increment this often
   double energy_blowup = 1e12;   ///< energy above this factor times the largest energy seen so far = divergence
   /// N*mm, >= 0: floor of the energy scale of the blow-up test. 0 = from the loads (|f| times
@@ -32,7 +35,8 @@ struct StaticSolverParams {
   /// tolerance would be unreachable.
   double force_reference = 0.0;
   /// Cholmod only: where the tangent is not positive definite, solve with K + mu diag(K)
-  /// (mu from 1e-4, tenfold until positive definite; Levenberg-Marquardt) so every step is a
+  /// (mu from 1e-4, or a decade below the last shift that worked, tenfold until positive
+  /// definite; Levenberg-Marquardt) so every step is a
   /// descent direction of the energy. For runs that minimise an energy through instabilities
   /// (the rest-shape relaxation); off for load-driven analyses (benchmarks pass limit points
   /// on the true tangent).

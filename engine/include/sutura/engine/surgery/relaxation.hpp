@@ -48,7 +48,7 @@ struct RelaxationParams {
   /// support reactions (skipped for a structure without supports, which would be singular).
   bool settle = true;
   int settle_steps = 20;   ///< >= 0, Dynamic only
-  int max_cuts = 6;        ///< a failed static increment is retried with half the increment this often
+  int max_cuts = 6;        ///< a failed static increment is retried with half the increment this often in a row (two good increments double it again)
   /// Relative Newton tolerance of the intermediate static increments, in (0, 1): they only
   /// carry the shape along the path; the last increment and the settling solve use
   /// statics.tolerance.
@@ -60,10 +60,11 @@ struct RelaxationParams {
 struct RelaxationProgress {
   double s = 0.0;          ///< current rest-shape parameter
   int step = 0;            ///< increments or dynamics steps done
-  int steps = 0;           ///< planned
+  int steps = 0;           ///< planned (static: done + what the current increment size needs)
   double residual = 0.0;   ///< |r| over free DOFs (static residual)
   double energy = 0.0;     ///< strain energy, N*mm
   std::string phase;       ///< "relax" or "settle"
+  int newton_iterations = 0;  ///< Newton iterations of this increment or step (retries included)
 };
 /// Called after every increment/step; return false to cancel (the state is kept as it is).
 using RelaxationHook = std::function<bool(const RelaxationProgress&)>;
