@@ -5,6 +5,7 @@
 //   gui [SESSION]              the interactive planning window (records a session)
 // Exit codes: 0 success, 1 the session or mesh failed (message on stderr), other non-zero
 // codes for command-line usage errors (from CLI11).
+#include <chrono>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,21 @@ int run_replay(const std::string& session_file, const std::string& out_dir, bool
   ReplayOptions options;
   options.out_dir = out_dir;
   options.progress = quiet ? nullptr : &std::cerr;
+  // Long runs (a relaxation can take minutes) show where they stand, at most once a second
+  // so a run of thousands of dynamics steps does not flood the terminal.
+  auto last_print = std::chrono::steady_clock::now();
+  if (!quiet)
+    options.on_progress = [&last_print](const RunProgress& p) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_print < std::chrono::seconds(1) && p.step < p.steps) return true;
+      last_print = now;
+      std::cerr << "\n    " << p.phase << " " << p.step << "/" << p.steps;
+      if (p.s >= 0.0) std::cerr << ", s = " << p.s;
+      if (p.residual >= 0.0) std::cerr << ", residual " << p.residual << " N";
+      if (p.newton_iterations >= 0) std::cerr << ", " << p.newton_iterations << " Newton iterations";
+      std::cerr << std::flush;
+      return true;
+    };
   if (!quiet)
     std::cerr << "sutura: replaying " << session_file << " (" << session.actions.size()
               << " actions) into " << out_dir << "/\n";

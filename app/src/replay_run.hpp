@@ -59,10 +59,11 @@ struct Run {
   json execute(const BodyForceOp& op);
   json execute(const SolveOp& op);
   json execute(const SimulateOp& op);
-  /// Passes a long op's progress (step of steps, current merged positions `x`) to
-  /// options.on_progress; false when the caller asks to cancel.
+  /// Passes a long op's progress (step of steps, current merged positions `x`, and for a
+  /// relaxation its s, residual and Newton iterations) to options.on_progress; false when the caller asks to cancel.
   bool report_progress(const std::string& phase, int step, int steps, const MergedSystem& merged,
-                       const std::vector<engine::Vec3>& x);
+                       const std::vector<engine::Vec3>& x, double s = -1.0,
+                       double residual = -1.0, int newton_iterations = -1);
   json execute(const ProbeOp& op);
   json execute(const CheckOp& op);
 

@@ -214,7 +214,9 @@ json Run::relax(const SimulateOp& op) {
   merged.rest() = engine::rest_at(y0, x0, s_start);
   bool cancelled = false;
   const engine::RelaxationHook hook = [&](const engine::RelaxationProgress& p) {
-    cancelled = !report_progress(p.phase, p.step, p.steps, merged, merged.state().x);
+    cancelled =
+        !report_progress(p.phase, p.step, p.steps, merged, merged.state().x, p.s, p.residual,
+                         params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1);
     return !cancelled;
   };
   const engine::RelaxationResult r =
@@ -246,13 +248,17 @@ json Run::relax(const SimulateOp& op) {
 }
 
 bool Run::report_progress(const std::string& phase, int step, int steps,
-                          const MergedSystem& merged, const std::vector<engine::Vec3>& x) {
+                          const MergedSystem& merged, const std::vector<engine::Vec3>& x,
+                          double s, double residual, int newton_iterations) {
   if (!options.on_progress) return true;
   RunProgress p;
   p.phase = phase;
   p.step = step;
   p.steps = steps;
   p.fraction = steps > 0 ? static_cast<double>(step) / steps : 0.0;
+  p.s = s;
+  p.residual = residual;
+  p.newton_iterations = newton_iterations;
   p.positions = merged.positions_by_object(x);
   return options.on_progress(p);
 }

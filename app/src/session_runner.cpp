@@ -23,7 +23,8 @@ struct SessionRunner::Impl {
 
   Impl(Session h, ReplayOptions o)
       : header(std::move(h)), options(std::move(o)),
-        run{header, options, {}, {}, json::array(), json::array()} {}
+        run{header, options, {}, {}, json::array(), json::array(),
+            json::object(), json::array(), json::object(), {}, {}} {}
   [[nodiscard]] double elapsed() const {
     return std::chrono::duration<double>(clock_type::now() - start).count();
   }

@@ -23,6 +23,9 @@ struct RunProgress {
   int step = 0;           ///< steps done so far in this op
   int steps = 0;          ///< steps planned in this op
   double fraction = 0.0;  ///< of the whole op, [0, 1]
+  double s = -1.0;         ///< relaxation parameter reached, [0, 1]; -1 for plain dynamics
+  double residual = -1.0;  ///< static residual |r| over free DOFs, N; -1 when not computed
+  int newton_iterations = -1;  ///< of the last relaxation increment; -1 when not counted
   /// Current positions of every object the op simulates, by name; the spans are valid only
   /// during the callback (copy what you keep).
   std::vector<std::pair<std::string, std::span<const engine::Vec3>>> positions;
