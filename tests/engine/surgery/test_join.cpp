@@ -55,25 +55,31 @@ TEST(Join, TwoStripsWithEqualCountsMergePairwiseAtTheMean) {
   EXPECT_NEAR(r.sutures[0].max_gap, 2.0, 1e-12);
 }
 
-TEST(Join, DifferentCountsRefineBothChainsToCommonArcLengths) {
+TEST(Join, DifferentCountsPairCloseVerticesAndRefineTheRest) {
   const SurfaceMesh m = two_strips(4, 7);
   const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
   const JoinResult r = join(m, {{a, b}});
   ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
   EXPECT_EQ(r.sutures[0].vertices_a, 5u);
   EXPECT_EQ(r.sutures[0].vertices_b, 8u);
-  // Arc lengths k/4 and k/7 share only the ends: each side gets the other's 3 or 6 interior
-  // vertices.
-  EXPECT_EQ(r.sutures[0].inserted_a, 6);
-  EXPECT_EQ(r.sutures[0].inserted_b, 3);
-  ASSERT_EQ(r.seams[0].size(), 11u);
-  // Partners sit at the same arc length, so each merged vertex is exactly at one of them.
+  // Arc lengths k/4 and k/7: 1/4 ~ 2/7 and 3/4 ~ 5/7 lie 1/28 apart, within 0.4 of the finer
+  // spacing 1/7, and are paired as they are; every other interior vertex gets a partner: b's
+  // 1/7, 3/7, 4/7, 6/7 on a, a's 1/2 on b.
+  EXPECT_EQ(r.sutures[0].inserted_a, 4);
+  EXPECT_EQ(r.sutures[0].inserted_b, 1);
+  ASSERT_EQ(r.seams[0].size(), 9u);
+  // Each merged vertex is at the mean of its copies: at one chain's vertex arc length when its
+  // partner was inserted there, or halfway between a paired 1/4 and 2/7 (3/4 and 5/7). No two
+  // seam vertices are closer than 0.4 of the finer spacing (no needle triangles).
+  const std::vector<double> expected = {0.0, 1.0 / 7, (0.25 + 2.0 / 7) / 2, 3.0 / 7, 0.5,
+                                        4.0 / 7, (0.75 + 5.0 / 7) / 2, 6.0 / 7, 1.0};
   for (std::size_t i = 0; i < r.seams[0].size(); ++i) {
     const double t = (r.mesh.position(r.seams[0][i]).y() + 2.0) / 4.0;  // chain a runs -y -> +y
-    const bool on_a = std::abs(t * 4 - std::round(t * 4)) < 1e-9;
-    const bool on_b = std::abs(t * 7 - std::round(t * 7)) < 1e-9;
-    EXPECT_TRUE(on_a || on_b) << "seam vertex " << i << " at t = " << t;
-    if (i > 0) EXPECT_GT(t, (r.mesh.position(r.seams[0][i - 1]).y() + 2.0) / 4.0);
+    EXPECT_NEAR(t, expected[i], 1e-12) << "seam vertex " << i;
+    if (i > 0) {
+      const double prev = (r.mesh.position(r.seams[0][i - 1]).y() + 2.0) / 4.0;
+      EXPECT_GT(t - prev, 0.4 / 7 - 1e-12) << "seam vertex " << i;
+    }
   }
 }
 

@@ -36,7 +36,7 @@ struct JoinResult {
 };
 
 /// Sutures all pairs in one edit. Vertices are paired by normalised arc length: vertices of
-/// both chains at the same arc length (within a fifth of the local spacing) are partners, and
+/// both chains at the same arc length (within 0.4 of the local spacing) are partners, and
 /// every vertex without one gets a partner inserted by splitting the other chain's edge at
 /// its arc length (the resampling the paper requires; a coarser chain is refined to the finer
 /// one's vertices). Insertions are reported in `sutures`. Pairing vertices that lie at
