@@ -218,12 +218,24 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
       c.min = float((*op.range)[0]);
       c.max = float((*op.range)[1]);
     } else {
-      float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+      // From the smallest value to the 99.5th percentile: a few needle triangles along a cut
+      // (strain 0.8 where the rest of the vessel stays below 0.1) would otherwise squeeze
+      // the whole repair into the bottom colour. Larger values take the top colour (the
+      // renderer clamps) and the legend says so.
+      std::vector<float> all;
       for (const auto* set : {&after, &before})
-        for (const auto& a : *set)
-          for (float s : a.scalars) lo = std::min(lo, s), hi = std::max(hi, s);
+        for (const auto& a : *set) all.insert(all.end(), a.scalars.begin(), a.scalars.end());
+      float lo = 0.0f, hi = 0.0f, top = 0.0f;
+      if (!all.empty()) {
+        lo = *std::min_element(all.begin(), all.end());
+        top = *std::max_element(all.begin(), all.end());
+        const auto k = static_cast<std::ptrdiff_t>(0.995 * double(all.size() - 1));
+        std::nth_element(all.begin(), all.begin() + k, all.end());
+        hi = all[static_cast<std::size_t>(k)];
+      }
       // A constant field (e.g. displacement before anything moved) still needs a range.
-      if (!(hi > lo)) hi = lo + 1.0f;
+      if (!(hi > lo)) hi = top > lo ? top : lo + 1.0f;
+      if (top > hi) c.label += " (top 0.5 % clipped)";
       c.min = lo;
       c.max = hi;
     }
