@@ -220,12 +220,20 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
   int cuts = 0;
   // Energies are compared against the largest converged energy, floored by the work scale of
   // the full load over the structure's size so the first step has a meaningful reference.
+  // Loads already at full value count too: a solve after an edit ramps no new load but
+  // starts out of equilibrium under the old ones (an incision releasing the hoop stress of an
+  // inflated vessel), and without them the reference would be zero.
   Eigen::VectorXd f;
   external_forces(sys.problem, state, sys.loads,
                   std::max(std::abs(params.lambda_start), std::abs(params.lambda_end)),
                   sys.dofs_per_node(), f, nullptr);
+  double force = f.norm();
+  if (!sys.fixed_loads.empty()) {
+    external_forces(sys.problem, state, sys.fixed_loads, 1.0, sys.dofs_per_node(), f, nullptr);
+    force += f.norm();
+  }
   double energy_scale =
-      std::max({f.norm() * characteristic_length(state), params.energy_reference, 1e-30});
+      std::max({force * characteristic_length(state), params.energy_reference, 1e-30});
   while (t_done < 1.0 - 1e-12) {
     const double t = std::min(1.0, t_done + dt);
     const double lambda = lambda_at(t);
