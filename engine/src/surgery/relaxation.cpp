@@ -138,10 +138,13 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
   double s = p.s_start;
   const double ds_planned = (p.s_end - p.s_start) / p.steps;
   double ds = ds_planned;
-  // `cuts` counts consecutive halvings; after two good increments in a row a halved
-  // increment is doubled again (up to the planned one), so one hard stretch of the path does
-  // not slow down all the rest of it.
-  int cuts = 0, done = 0, streak = 0, iterations_before = 0;
+  // A failed increment is halved, down to 2^-max_cuts of the planned one; after two good
+  // increments in a row a halved increment is doubled again (up to the planned one), so one
+  // hard stretch of the path does not slow down all the rest of it. The floor is absolute,
+  // not per run of failures: alternating failures and single successes would otherwise
+  // shrink the increment without bound and crawl for ever instead of reporting the failure.
+  const double ds_min = std::ldexp(ds_planned, -p.max_cuts);
+  int done = 0, streak = 0, iterations_before = 0;
   result.s_reached = s;
   while (s < p.s_end - 1e-12) {
     // The last increment lands on s_end exactly (no round-off short of 1).
@@ -155,19 +158,17 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     if (!r.converged) {
       state = good;
       rest = rest_at(y0, x0, s);
-      if (cuts == p.max_cuts) {
+      if (ds <= ds_min * (1.0 + 1e-9)) {
         std::ostringstream m;
         m << "relaxation failed at s = " << s_next << ": " << r.message
           << "; rolled back to s = " << s;
         result.message = m.str();
         return result;
       }
-      ++cuts;
       streak = 0;
       ds *= 0.5;
       continue;
     }
-    cuts = 0;
     if (++streak >= 2 && ds < ds_planned) {
       ds = std::min(ds_planned, 2.0 * ds);
       streak = 0;

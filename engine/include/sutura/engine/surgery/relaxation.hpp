@@ -48,7 +48,7 @@ struct RelaxationParams {
   /// support reactions (skipped for a structure without supports, which would be singular).
   bool settle = true;
   int settle_steps = 20;   ///< >= 0, Dynamic only
-  int max_cuts = 6;        ///< a failed static increment is retried with half the increment this often in a row (two good increments double it again)
+  int max_cuts = 6;        ///< a failed static increment is retried with half the increment, down to 2^-max_cuts of the planned one (two good increments double it again)
   /// Relative Newton tolerance of the intermediate static increments, in (0, 1): they only
   /// carry the shape along the path; the last increment and the settling solve use
   /// statics.tolerance.
