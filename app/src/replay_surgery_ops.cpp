@@ -128,13 +128,35 @@ json Run::execute(const JoinOp& op) {
       throw std::runtime_error("suture " + std::to_string(i + 1) + ": " + e.what());
     }
   }
-  const engine::JoinResult r = engine::join(obj.mesh, pairs);
+  engine::JoinParams params;
+  params.placement = op.placement;
+  if (op.placement == engine::SuturePlacement::OntoB) {
+    params.held.assign(obj.mesh.num_vertices(), false);
+    for (std::size_t v = 0; v < params.held.size(); ++v)
+      for (int dof = 0; dof < 3; ++dof)
+        if (obj.sim.constraints.is_fixed(v, dof)) params.held[v] = true;
+  }
+  const engine::JoinResult r = engine::join(obj.mesh, pairs, params);
   apply_edit(obj, r.mesh, r.maps);
-  start_relaxation(obj, r.merged, {});
+  std::vector<bool> moved_faces;
+  if (op.placement != engine::SuturePlacement::Mean) {
+    // The placement moved the copies and the vertices around them away from their carried
+    // (mean) positions: the state starts where the join put it, and every face it moved
+    // starts congruent (y0), so the joined shape is stress-free before the relaxation.
+    obj.sim.state.x = r.mesh.positions();
+    obj.mesh.set_positions(obj.sim.state.x);
+    moved_faces.assign(obj.mesh.num_faces(), false);
+    for (const auto v : r.displaced)
+      for (const auto f : obj.mesh.vertex_faces(v)) moved_faces[f.index()] = true;
+  }
+  start_relaxation(obj, r.merged, moved_faces);
   for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
   json sutures = json::array();
   for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
-  json j = {{"object", op.object}, {"sutures", sutures}, {"merged_vertices", r.merged.size()}};
+  json j = {{"object", op.object},
+            {"sutures", sutures},
+            {"merged_vertices", r.merged.size()},
+            {"displaced_vertices", r.displaced.size()}};
   j["mesh"] = mesh_counts(obj);
   return j;
 }

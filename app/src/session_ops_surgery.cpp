@@ -63,6 +63,8 @@ JoinOp parse_join(Fields& f) {
   JoinOp op;
   op.object = object_name(f);
   const double max_distance = f.optional_positive("max_distance", 1.0);
+  op.placement = engine::parse_suture_placement(
+      f.optional_choice("placement", "mean", {"mean", "onto_b"}));
   if (f.has("chains") == f.has("sutures"))
     f.fail("sutures", "give either chains (one suture: two chains) or sutures (a list of "
                       "{\"a\": chain, \"b\": chain})");

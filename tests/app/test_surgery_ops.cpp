@@ -90,6 +90,32 @@ TEST(SurgeryOps, BadRequestsNameTheLineTheOpAndTheProblem) {
   EXPECT_NE(e.find("nothing to relax"), std::string::npos) << e;
 }
 
+TEST(SurgeryOps, TwoStripsReachTheSameClosedFormFromEitherPlacement) {
+  // Drawing strip 1 onto strip 2 (placement onto_b) instead of meeting halfway starts the
+  // relaxation from another joined shape; the equilibrium, checked by the session against the
+  // closed form of the fixed span, is the same.
+  std::string text = two_strips_text();
+  const std::string chains = "\"chains\": [{\"from\": [10, -2, 0]";
+  const auto at = text.find(chains);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at, "\"placement\": \"onto_b\", ");
+  const ReplayResult r = run(text, "onto_b");
+  int joins = 0;
+  for (const auto& a : r.report["actions"])
+    if (a["op"] == "join") {
+      ++joins;
+      EXPECT_GT(a["displaced_vertices"].get<int>(), 0);
+    }
+  EXPECT_EQ(joins, 1);
+  EXPECT_EQ(r.report["checks"].size(), 2u);
+
+  const std::string bad = kHeader + kTube +
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 6], [4, 0, 14]], \"mode\": \"snap\"}\n"
+      "{\"op\": \"join\", \"object\": \"t\", \"placement\": \"middle\", \"chains\": []}\n";
+  const std::string e = failure(bad, 4);
+  EXPECT_NE(e.find("placement"), std::string::npos) << e;
+}
+
 TEST(SurgeryOps, UndoReturnsTheIdenticalMeshAndRedoTheEdit) {
   const std::string incise =
       "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 5.3], [0, 4, 12.7]]}\n";

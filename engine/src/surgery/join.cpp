@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "shape_deformation.hpp"
 #include "mesh_walk.hpp"
 #include "sutura/engine/errors.hpp"
 #include "triangle_soup.hpp"
@@ -66,8 +67,20 @@ void check_chain(const SurfaceMesh& mesh, const BoundaryChain& c, const std::str
 
 }  // namespace
 
-JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
+SuturePlacement parse_suture_placement(const std::string& name) {
+  if (name == "mean") return SuturePlacement::Mean;
+  if (name == "onto_b") return SuturePlacement::OntoB;
+  throw InvalidArgument("unknown suture placement '" + name + "' (expected mean or onto_b)");
+}
+
+JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
+                const JoinParams& params) {
+  if (!params.held.empty() && params.held.size() != mesh.num_vertices())
+    throw InvalidArgument("join: " + std::to_string(params.held.size()) + " held flags for " +
+                          std::to_string(mesh.num_vertices()) + " vertices");
   if (pairs.empty()) throw InvalidArgument("a join needs at least one pair of chains");
+  if (params.rigid_iterations < 0 || params.rigid_stages < 1)
+    throw InvalidArgument("join: rigid_iterations must be >= 0 and rigid_stages >= 1");
   // Validate chains and reject overlaps (a chain sutured to itself or used twice).
   std::map<std::pair<int, int>, std::string> used_edges;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
@@ -208,6 +221,46 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
     new_id[v] = new_id[r];
     members[new_id[v]].push_back(int(v));
   }
+  // Where each copy goes: OntoB moves every copy to its group's b copies and carries the
+  // rest of the mesh along as rigidly as possible (free vertices follow, held ones stay);
+  // Mean moves nothing but the copies, which meet at their mean below.
+  std::vector<Vec3> moved(soup.num_vertices());
+  for (std::size_t v = 0; v < soup.num_vertices(); ++v) moved[v] = soup.position(int(v));
+  std::vector<bool> displaced(soup.num_vertices(), false);
+  if (params.placement == SuturePlacement::OntoB) {
+    std::vector<bool> on_b(soup.num_vertices(), false);
+    for (const auto& pv : pair_vertices)
+      for (const auto& [x, y] : pv) on_b[y] = true;
+    std::vector<bool> prescribed(soup.num_vertices(), false);
+    std::vector<Vec3> value(soup.num_vertices(), Vec3::Zero());
+    for (std::size_t v = 0; v < params.held.size(); ++v) prescribed[v] = params.held[v];
+    for (const auto& mem : members) {
+      if (mem.size() < 2) continue;
+      Vec3 target = Vec3::Zero();
+      int count = 0;
+      for (const int v : mem)
+        if (on_b[v]) target += soup.position(v), ++count;
+      target /= double(count);  // every group holds a b copy: it was made by pairing a with b
+      for (const int v : mem) {
+        prescribed[v] = true;
+        value[v] = target - soup.position(v);
+      }
+    }
+    std::vector<FaceIndices> soup_faces(soup.num_faces());
+    for (std::size_t f = 0; f < soup.num_faces(); ++f) soup_faces[f] = soup.face(int(f));
+    const std::vector<Vec3> placed = detail::as_rigid_as_possible(
+        moved, soup_faces, prescribed, value, params.rigid_iterations, params.rigid_stages);
+    // Parts the suture does not pull on come back from the solve with round-off changes
+    // only; they keep their positions bit for bit (and their rest shapes stay as they are).
+    Eigen::AlignedBox3d box;
+    for (const Vec3& x : moved) box.extend(x);
+    const double negligible = 1e-12 * box.diagonal().norm();
+    for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
+      if ((placed[v] - moved[v]).norm() <= negligible) continue;
+      displaced[v] = true;
+      moved[v] = placed[v];
+    }
+  }
   const EditMaps& sm = soup.maps();
   std::vector<Vec3> positions(members.size());
   EditMaps maps;
@@ -219,7 +272,7 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
     VertexOrigin& o = maps.vertices[g];
     o.kind = mem.size() > 1 ? VertexOriginKind::Merged : sm.vertices[mem[0]].kind;
     for (const int v : mem) {
-      x += soup.position(v);
+      x += moved[v];
       const VertexOrigin& so = sm.vertices[v];
       if (mem.size() == 1) o.kind = so.kind;
       for (std::size_t j = 0; j < so.parents.size(); ++j)
@@ -231,6 +284,7 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs) {
       o.weights.push_back(w);
     }
     if (mem.size() > 1) result.merged.emplace_back(g);
+    else if (displaced[mem[0]]) result.displaced.emplace_back(g);
   }
   std::vector<FaceIndices> faces(soup.num_faces());
   maps.faces = sm.faces;

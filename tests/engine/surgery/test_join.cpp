@@ -83,6 +83,64 @@ TEST(Join, DifferentCountsPairCloseVerticesAndRefineTheRest) {
   }
 }
 
+TEST(Join, OntoBDrawsChainAOntoBAndCarriesAFreeComponentRigidly) {
+  const SurfaceMesh m = two_strips(4, 4, 3.0);
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 13.0, 2, -2);
+  JoinParams params;
+  params.placement = SuturePlacement::OntoB;
+  const JoinResult r = join(m, {{a, b}}, params);
+  ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+  for (const VertexId v : r.merged) EXPECT_NEAR(r.mesh.position(v).x(), 13.0, 1e-12);
+  // Strip 1 follows as a rigid body (a translation by the gap); strip 2 does not move. Every
+  // unmerged vertex of strip 1 is reported as displaced.
+  const std::size_t n1 = make_strip({10.0, 4.0, 10, 4}).num_vertices();
+  std::size_t displaced = 0;
+  for (std::size_t v = 0; v < r.maps.vertices.size(); ++v) {
+    const auto& o = r.maps.vertices[v];
+    if (o.parents.size() != 1) continue;
+    const Vec3 before = m.position(o.parents[0]);
+    const Vec3 shift = o.parents[0].index() < n1 ? Vec3(3.0, 0, 0) : Vec3::Zero();
+    EXPECT_LT((r.mesh.position(VertexId(v)) - before - shift).norm(), 1e-9) << "vertex " << v;
+    if (o.parents[0].index() < n1) ++displaced;
+  }
+  EXPECT_EQ(r.displaced.size(), displaced);
+  EXPECT_GT(displaced, 0u);
+}
+
+TEST(Join, OntoBKeepsHeldVerticesAndBendsTheFreePartWithoutStretchingIt) {
+  // Strip 1 held along x = 0; its right edge is drawn 3 mm across onto strip 2. The free part
+  // in between follows with no vertex beyond the held edge or the seam, and no edge of it is
+  // stretched much beyond the 30 % the span change forces (10 -> 13 mm) or squeezed.
+  const SurfaceMesh m = two_strips(4, 4, 3.0);
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 13.0, 2, -2);
+  JoinParams params;
+  params.placement = SuturePlacement::OntoB;
+  params.held.assign(m.num_vertices(), false);
+  for (std::size_t v = 0; v < m.num_vertices(); ++v)
+    params.held[v] = std::abs(m.position(VertexId(v)).x()) < 1e-12;
+  const JoinResult r = join(m, {{a, b}}, params);
+  ASSERT_TRUE(r.mesh.validate().ok());
+  for (std::size_t v = 0; v < r.maps.vertices.size(); ++v) {
+    const auto& o = r.maps.vertices[v];
+    const Vec3 x = r.mesh.position(VertexId(v));
+    if (o.parents.size() == 1 && params.held[o.parents[0].index()]) {
+      EXPECT_EQ(x, m.position(o.parents[0]));
+    }
+    EXPECT_GE(x.x(), -1e-9);
+    EXPECT_LE(x.x(), 23.0 + 1e-9);
+  }
+  for (const auto& f : r.mesh.faces())
+    for (int k = 0; k < 3; ++k) {
+      const auto& o0 = r.maps.vertices[f[k]];
+      const auto& o1 = r.maps.vertices[f[(k + 1) % 3]];
+      if (o0.parents.size() != 1 || o1.parents.size() != 1) continue;
+      const double rest = (m.position(o0.parents[0]) - m.position(o1.parents[0])).norm();
+      const double now = (r.mesh.position(VertexId(f[k])) - r.mesh.position(VertexId(f[(k + 1) % 3]))).norm();
+      EXPECT_GT(now, 0.7 * rest);
+      EXPECT_LT(now, 1.4 * rest);
+    }
+}
+
 TEST(Join, NearlyCoincidentArcLengthsArePairedWithoutInsertion) {
   const SurfaceMesh m = two_strips(4, 4);
   const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
@@ -199,6 +257,17 @@ TEST(Join, ClosingASmallFanAtASharedEndWidensItFirst) {
   ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
   EXPECT_FALSE(r.mesh.is_boundary(VertexId(0)));  // e is now inside the closed cone
   EXPECT_GE(r.mesh.vertex_faces(VertexId(0)).size(), 3u);
+}
+
+TEST(Join, RejectsHeldFlagsOfTheWrongSize) {
+  const SurfaceMesh m = two_strips(4, 4);
+  const BoundaryChain a = facing_edge(m, 10.0, -2, 2), b = facing_edge(m, 12.0, 2, -2);
+  JoinParams params;
+  params.placement = SuturePlacement::OntoB;
+  params.held.assign(3, true);
+  EXPECT_THROW(join(m, {{a, b}}, params), InvalidArgument);
+  EXPECT_THROW(parse_suture_placement("middle"), InvalidArgument);
+  EXPECT_EQ(parse_suture_placement("onto_b"), SuturePlacement::OntoB);
 }
 
 TEST(Join, RejectsBadChains) {

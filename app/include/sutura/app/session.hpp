@@ -25,6 +25,7 @@
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
 #include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/join.hpp"
 #include "sutura/engine/surgery/patch_plan.hpp"
 #include "sutura/engine/surgery/relaxation.hpp"
 #include "sutura/engine/surgery/resect.hpp"
@@ -228,6 +229,9 @@ struct SutureSpec {
 struct JoinOp {
   std::string object;
   std::vector<SutureSpec> sutures;
+  /// Where the joined shape starts (`placement`: "mean" or "onto_b"); held vertices (any
+  /// fixed translation) are passed on by the replay.
+  engine::SuturePlacement placement = engine::SuturePlacement::Mean;
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
