@@ -39,8 +39,9 @@ enum class SuturePlacement {
   /// extension of the copies' displacement. For chains far apart, e.g. a flap turned down
   /// into an incision 15 mm away: the mean of such copies stretches the elements next to
   /// them across the gap while the rest of the flap stays behind, and the relaxation cannot
-  /// untangle that start. Measured on a subclavian flap (docs/validation.md): the relaxation
-  /// from the harmonic extension alone stalls at s = 0.05, from this placement at s = 0.64.
+  /// untangle that start. Measured on a subclavian flap (docs/validation.md): the static
+  /// relaxation from the harmonic extension alone stalls at s = 0.05, from a one-stage rigid
+  /// fit at 0.64, from the staged fit (default) at 0.76.
   OntoB,
 };
 
