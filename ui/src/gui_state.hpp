@@ -30,6 +30,7 @@ struct IncisionDraft {
 /// Two boundary chains picked as from/to points; filled in click order a.from, a.to, b.from, b.to.
 struct SutureDraft {
   std::vector<engine::Vec3> clicks;
+  bool onto_b = false;  ///< join placement onto_b: side A is drawn onto side B (a flap)
 };
 
 /// Fix ends: a whole boundary loop per click, or a run of boundary vertices between two

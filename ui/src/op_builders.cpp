@@ -38,11 +38,13 @@ json incise_op(const std::string& object, const std::vector<engine::Vec3>& point
   return {{"op", "incise"}, {"object", object}, {"points", pts}, {"mode", snap ? "snap" : "cut"}};
 }
 
-json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b) {
+json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, bool onto_b) {
   json chains = json::array();
   for (const auto* c : {&a, &b})
     chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
-  return {{"op", "join"}, {"object", object}, {"chains", chains}};
+  json op = {{"op", "join"}, {"object", object}, {"chains", chains}};
+  if (onto_b) op["placement"] = "onto_b";
+  return op;
 }
 
 json patch_op(const std::string& object, const std::string& shape, const engine::Vec3& lip_start,

@@ -31,7 +31,9 @@ nlohmann::json incise_op(const std::string& object, const std::vector<engine::Ve
 struct ChainEnds {
   engine::Vec3 from, to;
 };
-nlohmann::json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b);
+/// `onto_b`: placement "onto_b" (side a drawn onto side b); otherwise the default (mean).
+nlohmann::json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b,
+                       bool onto_b = false);
 nlohmann::json patch_op(const std::string& object, const std::string& shape,
                         const engine::Vec3& lip_start, const engine::Vec3& lip_end, double width,
                         const nlohmann::json& material);

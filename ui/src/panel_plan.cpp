@@ -130,6 +130,10 @@ void suture_controls(GuiState& s) {
     const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks);
     for (const auto& line : p.lines) ImGui::TextWrapped("%s", line.c_str());
   }
+  noted_checkbox(s.widgets, "Draw side A onto side B (flap)", &s.suture.onto_b);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Side B stays; side A and the tissue behind it follow as rigidly as "
+                      "possible. Otherwise both sides meet halfway.");
   const std::optional<std::string> why =
       s.suture.clicks.size() < 4 ? std::optional<std::string>("Pick both chains first.") : std::nullopt;
   if (gated_button(s.widgets, "Join", why)) commit_suture(s);
@@ -233,7 +237,8 @@ void commit_suture(GuiState& s) {
     return;
   }
   const auto& c = s.suture.clicks;
-  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}), "Suture joined"))
+  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}, s.suture.onto_b),
+                "Suture joined"))
     s.suture.clicks.clear();
 }
 
