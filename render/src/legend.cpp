@@ -47,6 +47,25 @@ class TriangleList {
   std::vector<OverlayVertex>& out_;
 };
 
+// `text` with spaces turned into line breaks wherever a line would exceed `max_width` pixels.
+std::string wrap_words(const std::string& text, int max_width, int scale) {
+  std::string out, line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find(' ', start), text.size());
+    const std::string word = text.substr(start, end - start);
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_width(longer, scale) > max_width) {
+      out += line + "\n";
+      line = word;
+    } else {
+      line = longer;
+    }
+    start = end + 1;
+  }
+  return out + line;
+}
+
 }  // namespace
 
 std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int height,
@@ -83,10 +102,15 @@ std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int 
   list.text(max_text, bar_x1 + gap, bar_y0 - half_cap, s, ink);
   list.text(min_text, bar_x1 + gap, bar_y1 - half_cap, s, ink);
   if (!map.label.empty()) {
-    // Right-aligned with the numbers, above the max value; long labels run to the left.
-    const int x = std::max(width - margin - text_width(map.label, s), 0);
-    const int y = bar_y0 - half_cap - gap - kTextDescentUnits * s;
-    list.text(map.label, x, y, s, ink);
+    // Above the max value, wrapped at spaces to the right third of the picture so that a
+    // long label ("max principal membrane strain [-] (top 0.5 % clipped)") does not run
+    // across the object in the middle; lines flush left, the block right-aligned with the
+    // numbers. A single word wider than that keeps its line.
+    const std::string text = wrap_words(map.label, std::max(width / 3, numbers_w + gap + bar_w), s);
+    const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+    const int x = std::max(width - margin - text_width(text, s), 0);
+    const int y = bar_y0 - half_cap - gap - kTextDescentUnits * s - (lines - 1) * kTextLineUnits * s;
+    list.text(text, x, std::max(y, 0), s, ink);
   }
   return out;
 }

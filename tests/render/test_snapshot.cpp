@@ -307,6 +307,36 @@ TEST_F(RenderSnapshot, LegendAddsTextAndBarOnTheRightOnly) {
   EXPECT_EQ(render(scene, camera, w, h).rgba, without.rgba);
 }
 
+TEST_F(RenderSnapshot, LongLegendLabelWrapsInsteadOfCrossingThePicture) {
+  // A label several times wider than a third of the picture is wrapped at its spaces: every
+  // legend pixel stays in the right third (plus the margin), and the label takes more than
+  // one line above the bar.
+  const TestMesh sphere = uv_sphere(1.0f, 32, 64);
+  std::vector<float> z;
+  for (std::size_t v = 0; v < sphere.vertex_count(); ++v) z.push_back(sphere.positions[3 * v + 2]);
+  Scene scene;
+  scene.surfaces.push_back(sphere.surface());
+  scene.surfaces[0].scalars = z;
+  scene.color_map = ColorMap{ColorMapName::Viridis, -1.0f, 1.0f,
+                             "max principal membrane strain [-] (top 0.5 % clipped)", true};
+  const int w = 640;
+  const int h = 480;
+  const Camera camera = fit_camera(scene_bounds(scene), static_cast<float>(w) / h);
+  const Image with = render(scene, camera, w, h);
+  RenderOptions no_legend;
+  no_legend.draw_legend = false;
+  const Image without = render(scene, camera, w, h, no_legend);
+  keep(with, "legend_long_label");
+  int leftmost = w, top = h;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (with.pixel(x, y) != without.pixel(x, y)) leftmost = std::min(leftmost, x), top = std::min(top, y);
+  EXPECT_GE(leftmost, w - w / 3 - 12) << "the label runs into the picture";
+  // The bar starts at 3/10 of the height; two or more label lines reach above it by more
+  // than one line (12 font units at scale 1 for 480 px).
+  EXPECT_LT(top, (h - h * 2 / 5) / 2 - 2 * 12);
+}
+
 TEST_F(RenderSnapshot, WireframeOverlayDrawsEdges) {
   const TestMesh plane = square(1.0f, 8);
   Scene scene;
