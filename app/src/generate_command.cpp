@@ -95,6 +95,9 @@ CLI::App* add_generate_command(CLI::App& app, GenerateArchOptions& o) {
                    "Target edge length in mm (0.2 ... 2); overrides --resolution");
   arch->add_option("--coarctation", o.coarctation,
                    "Narrowest lumen diameter as a fraction of the descending aorta (0.2 ... 1)");
+  arch->add_option("--lsa-length", o.lsa_length,
+                   "Left subclavian length in mm from the aortic centreline to its open end "
+                   "(default 14; a subclavian flap needs about the aortotomy's length)");
   arch->add_option("--branches", o.branches,
                    "all: innominate, left common carotid and left subclavian; lsa: subclavian only")
       ->capture_default_str()
@@ -108,6 +111,7 @@ engine::ArchParams arch_params(const GenerateArchOptions& o) {
   p.target_edge_length = o.edge_length.value_or(
       o.resolution == "fine" ? engine::kArchFineEdgeLength : engine::kArchCoarseEdgeLength);
   if (o.coarctation) p.coarctation_fraction = *o.coarctation;
+  if (o.lsa_length) p.lsa_length = *o.lsa_length;
   p.head_neck_branches = o.branches == "all";
   return p;
 }

@@ -16,6 +16,7 @@ struct GenerateArchOptions {
   std::string resolution = "coarse";   ///< "coarse" | "fine": kArchCoarse/FineEdgeLength
   std::optional<double> edge_length;   ///< mm; overrides the resolution
   std::optional<double> coarctation;   ///< ArchParams::coarctation_fraction
+  std::optional<double> lsa_length;    ///< mm, ArchParams::lsa_length
   std::string branches = "all";        ///< "all" (innominate, carotid, subclavian) | "lsa"
   bool quiet = false;
 };
