@@ -14,9 +14,7 @@ namespace {
 
 // The weighted graph Laplacian of the free vertices that reach a prescribed one, factorised.
 struct FreeLaplacian {
-  std::vector<std::pair<int, int>> edges;   // undirected, each once
-  std::vector<double> weight;               // per edge, 1 / rest length
-  std::vector<std::vector<std::pair<int, double>>> adjacent;  // per vertex: (neighbour, weight)
+  std::vector<std::vector<std::pair<int, double>>> adjacent;  // per vertex: (neighbour, 1 / rest length)
   std::vector<int> unknown;                 // per vertex: row, or -1 (prescribed or unreached)
   int m = 0;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
@@ -25,19 +23,20 @@ struct FreeLaplacian {
 void build(const std::vector<Vec3>& positions, const std::vector<FaceIndices>& faces,
            const std::vector<bool>& prescribed, FreeLaplacian& L) {
   const std::size_t n = positions.size();
-  L.edges.reserve(3 * faces.size());
+  // Undirected edges, each once (an interior edge appears in two faces).
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * faces.size());
   for (const auto& f : faces)
     for (int k = 0; k < 3; ++k) {
       const int u = f[k], v = f[(k + 1) % 3];
-      L.edges.emplace_back(std::min(u, v), std::max(u, v));
+      edges.emplace_back(std::min(u, v), std::max(u, v));
     }
-  std::sort(L.edges.begin(), L.edges.end());
-  L.edges.erase(std::unique(L.edges.begin(), L.edges.end()), L.edges.end());
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   L.adjacent.assign(n, {});
-  for (const auto& [u, v] : L.edges) {
+  for (const auto& [u, v] : edges) {
     // A zero-length edge (coincident copies) gets a large but finite weight.
     const double w = 1.0 / std::max((positions[u] - positions[v]).norm(), 1e-9);
-    L.weight.push_back(w);
     L.adjacent[u].emplace_back(v, w);
     L.adjacent[v].emplace_back(u, w);
   }
@@ -66,7 +65,23 @@ void build(const std::vector<Vec3>& positions, const std::vector<FaceIndices>& f
   A.setFromTriplets(triplets.begin(), triplets.end());
   L.solver.compute(A);
   if (L.solver.info() != Eigen::Success)
-    throw InvalidArgument("harmonic_spread: the Laplacian of the free vertices is singular");
+    throw InvalidArgument("shape deformation: the Laplacian of the free vertices is singular");
+}
+
+// Harmonic extension of displacements `d` given at the prescribed vertices: adds the free
+// vertices' share to `out` (entries of prescribed and unreached vertices are left alone).
+void add_spread(const FreeLaplacian& L, const std::vector<Vec3>& d, std::vector<Vec3>& out) {
+  if (L.m == 0) return;
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(L.m, 3);
+  for (std::size_t v = 0; v < L.adjacent.size(); ++v) {
+    const int i = L.unknown[v];
+    if (i < 0) continue;
+    for (const auto& [w, weight] : L.adjacent[v])
+      if (L.unknown[w] < 0) rhs.row(i) += weight * d[w].transpose();
+  }
+  const Eigen::MatrixXd x = L.solver.solve(rhs);
+  for (std::size_t v = 0; v < out.size(); ++v)
+    if (L.unknown[v] >= 0) out[v] += x.row(L.unknown[v]).transpose();
 }
 
 }  // namespace
@@ -83,17 +98,7 @@ std::vector<Vec3> harmonic_spread(const std::vector<Vec3>& positions,
   std::vector<Vec3> d(n, Vec3::Zero());
   for (std::size_t v = 0; v < n; ++v)
     if (prescribed[v]) d[v] = value[v];
-  if (L.m == 0) return d;
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(L.m, 3);
-  for (std::size_t v = 0; v < n; ++v) {
-    const int i = L.unknown[v];
-    if (i < 0) continue;
-    for (const auto& [w, weight] : L.adjacent[v])
-      if (L.unknown[w] < 0) rhs.row(i) += weight * d[w].transpose();
-  }
-  const Eigen::MatrixXd x = L.solver.solve(rhs);
-  for (std::size_t v = 0; v < n; ++v)
-    if (L.unknown[v] >= 0) d[v] = x.row(L.unknown[v]).transpose();
+  add_spread(L, d, d);
   return d;
 }
 
@@ -114,21 +119,17 @@ std::vector<Vec3> as_rigid_as_possible(const std::vector<Vec3>& positions,
     // Move the prescribed vertices to this stage's targets and warm-start the free ones by
     // the harmonic spread of that step (exact for a translation, so a part that only
     // translates comes out translated to round-off).
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(L.m, 3);
+    std::vector<Vec3> step(n, Vec3::Zero());
     for (std::size_t v = 0; v < n; ++v) {
       if (!prescribed[v]) continue;
       const Vec3 target = stage == stages
                               ? Vec3(positions[v] + value[v])
                               : Vec3(positions[v] + value[v] * (double(stage) / stages));
-      const Vec3 step = target - p[v];
+      step[v] = target - p[v];
       p[v] = target;
-      for (const auto& [w, weight] : L.adjacent[v])
-        if (L.unknown[w] >= 0) rhs.row(L.unknown[w]) += weight * step.transpose();
     }
     if (L.m == 0) continue;
-    const Eigen::MatrixXd warm = L.solver.solve(rhs);
-    for (std::size_t v = 0; v < n; ++v)
-      if (L.unknown[v] >= 0) p[v] += warm.row(L.unknown[v]).transpose();
+    add_spread(L, step, p);
     for (int it = 0; it < iterations; ++it) {
       // Local step: the rotation that best maps each rest neighbourhood onto the current one.
       for (std::size_t v = 0; v < n; ++v) {

@@ -35,8 +35,8 @@ enum class SuturePlacement {
   Mean,
   /// Chain a is drawn onto chain b: each merged vertex at its b copy (the mean of its b
   /// copies), and the rest of the mesh follows as rigidly as possible (held vertices stay):
-  /// an as-rigid-as-possible deformation (Sorkine & Alexa 2007) started from the harmonic
-  /// extension of the copies' displacement. For chains far apart, e.g. a flap turned down
+  /// an as-rigid-as-possible deformation (Sorkine & Alexa 2007) applied in stages, each
+  /// warm-started by the harmonic extension of its step. For chains far apart, e.g. a flap turned down
   /// into an incision 15 mm away: the mean of such copies stretches the elements next to
   /// them across the gap while the rest of the flap stays behind, and the relaxation cannot
   /// untangle that start. Measured on a subclavian flap (docs/validation.md): the static
@@ -82,7 +82,8 @@ struct JoinResult {
 /// boundary edges in the boundary direction, chains that overlap (a chain joined with itself),
 /// a closed loop paired with an open chain, a suture that would collapse a triangle or make
 /// the surface non-manifold. Cost O(F log F) plus O(n_a n_b) per pair of different counts;
-/// OntoB adds one sparse Cholesky solve over the vertices (O(V^1.5) on a surface mesh).
+/// OntoB adds one sparse Cholesky factorisation over the vertices (O(V^1.5) on a surface
+/// mesh) and rigid_stages * (rigid_iterations + 1) back-substitutions with 3x3 SVDs per vertex.
 /// The joined positions are in `mesh`; the maps' weights give each vertex its parents' mean.
 JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
                 const JoinParams& params = {});
