@@ -3,13 +3,15 @@
 //
 // Per element: the linear local stiffness K_e (18x18, per corner u v w theta_x theta_y theta_z)
 // = ANDES-OPT membrane (andes_membrane.hpp, scales with t) + DKT bending (dkt_bending.hpp,
-// scales with t^3), built from the element's own rest geometry (ElementRest) on every call, so
+// scales with t^3), built from the element's own rest geometry (ElementRest) and kept in a
+// transparent memo keyed by that geometry and the material (element_stiffness_cache.hpp), so
 // the model stays a pure function of its inputs while the rest state changes during relaxation.
 // The corotational kinematics, gradient and consistent tangent are in corotation.hpp.
 //
 // Cost per element, one core (Release, SSE2, measured on the 20k-element tube of the report):
-// stiffness 0.9 us, energy 1.5 us, energy + gradient 1.9 us, + consistent tangent and its 324
-// triplets 5.5 us. A current triangle collapsed to a segment has no frame: energy and forces are
+// stiffness 0.9 us (once per rest state, cached), energy 1.5 us, energy + gradient 1.9 us,
+// + consistent tangent and its 324 triplets 5.5 us (each including the stiffness; measured
+// before the cache). A current triangle collapsed to a segment has no frame: energy and forces are
 // then NaN (solvers test std::isfinite and cut the step).
 //
 // Parallelism: the per-element loop runs under OpenMP for large meshes; every element writes
@@ -22,9 +24,9 @@
 
 #include <Eigen/LU>
 
-#include "andes_membrane.hpp"
 #include "corotation.hpp"
 #include "dkt_bending.hpp"
+#include "element_stiffness_cache.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
 
@@ -35,18 +37,6 @@ constexpr int kDofs = 6;
 constexpr int kElementDofs = 18;
 // Below this many elements the OpenMP fork/join costs more than it saves.
 constexpr std::size_t kParallelThreshold = 512;
-
-/// The linear local stiffness from the element's rest geometry; DKT's w rows and columns
-/// are dropped because the corotated normal translations vanish identically (corotation.hpp).
-LocalStiffness local_stiffness(const LocalRest& r, const ShellMaterial& m) {
-  LocalStiffness K;
-  K.membrane = andes_membrane_stiffness(r.X, m);
-  const Eigen::Matrix<double, 9, 9> Kb = dkt_bending_stiffness(r.X, m);
-  constexpr int kRotation[6] = {1, 2, 4, 5, 7, 8};  // (theta_x, theta_y) of each corner
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) K.bending(i, j) = Kb(kRotation[i], kRotation[j]);
-  return K;
-}
 
 /// Checks the problem and the state once per call; throws InvalidArgument naming the problem.
 void check_problem(const ShellProblem& p, const ShellState& s) {
@@ -88,30 +78,35 @@ Eigen::Vector2d symmetric_eigenvalues(double a, double b, double c) {
   return {mean - r, mean + r};
 }
 
-/// Everything one element needs: rest data, stiffness, corotated state, local forces.
+/// Everything one element needs: rest data and stiffness (cached or its own), corotated
+/// state, local forces.
 struct ElementState {
-  LocalRest rest;
-  LocalStiffness K;
+  const ElementRestData* data = nullptr;
+  ElementRestData own;  ///< used when the call has no cache
   CorotatedElement co;
   LocalForces f;
   double energy = 0.0;
 };
 
-/// Evaluates element `f`; returns false for a degenerate rest triangle (area below 1e-12 of
-/// its squared longest edge), leaving the other fields unset.
+/// Evaluates element `f`, with its rest data from `cache` when given; returns false for a
+/// degenerate rest triangle, leaving the other fields unset.
 bool evaluate_element(const ShellProblem& p, const ShellState& s, std::size_t f,
-                      ElementState& el) {
+                      ElementStiffnessCache* cache, ElementState& el) {
   const FaceIndices& face = (*p.faces)[f];
-  el.rest = make_local_rest(p.rest->elements[f]);
-  const double l2 = std::max({(el.rest.X[1] - el.rest.X[0]).squaredNorm(),
-                              (el.rest.X[2] - el.rest.X[1]).squaredNorm(),
-                              (el.rest.X[0] - el.rest.X[2]).squaredNorm()});
-  if (!(el.rest.area > 1e-12 * l2)) return false;
-  el.K = local_stiffness(el.rest, (*p.materials)[(*p.face_material)[f]]);
-  el.co = corotate(el.rest, {s.x[face[0]], s.x[face[1]], s.x[face[2]]},
+  const ElementRest& rest = p.rest->elements[f];
+  const ShellMaterial& material = (*p.materials)[(*p.face_material)[f]];
+  if (cache != nullptr) {
+    el.data = cache->get(f, rest, material);
+    if (el.data == nullptr) return false;
+  } else {
+    if (!build_element_rest_data(rest, material, el.own)) return false;
+    el.data = &el.own;
+  }
+  const LocalStiffness& K = el.data->K;
+  el.co = corotate(el.data->rest, {s.x[face[0]], s.x[face[1]], s.x[face[2]]},
                    {s.D[face[0]], s.D[face[1]], s.D[face[2]]});
-  el.f.fm.noalias() = el.K.membrane.lazyProduct(el.co.dm);
-  el.f.fb.noalias() = el.K.bending.lazyProduct(el.co.db);
+  el.f.fm.noalias() = K.membrane.lazyProduct(el.co.dm);
+  el.f.fb.noalias() = K.bending.lazyProduct(el.co.db);
   el.energy = 0.5 * (el.co.dm.dot(el.f.fm) + el.co.db.dot(el.f.fb));
   return true;
 }
@@ -141,10 +136,11 @@ class CorotationalShell final : public ShellModel {
 
   [[nodiscard]] double energy(const ShellProblem& p, const ShellState& s) const override {
     check_problem(p, s);
+    const CacheLease lease = lease_cache(p.faces->size());
     std::vector<double> e(p.faces->size());
     for_each_element(e.size(), [&](std::size_t f) {
       ElementState el;
-      if (!evaluate_element(p, s, f, el)) return false;
+      if (!evaluate_element(p, s, f, lease.cache, el)) return false;
       e[f] = el.energy;
       return true;
     });
@@ -154,14 +150,15 @@ class CorotationalShell final : public ShellModel {
   double energy_gradient(const ShellProblem& p, const ShellState& s,
                          Eigen::VectorXd& g) const override {
     check_problem(p, s);
+    const CacheLease lease = lease_cache(p.faces->size());
     const std::size_t F = p.faces->size();
     std::vector<double> e(F);
     std::vector<Vec18> ge(F);
     for_each_element(F, [&](std::size_t f) {
       ElementState el;
-      if (!evaluate_element(p, s, f, el)) return false;
+      if (!evaluate_element(p, s, f, lease.cache, el)) return false;
       e[f] = el.energy;
-      corotational_gradient(el.rest, el.co, el.K, el.f, ge[f], nullptr, false);
+      corotational_gradient(el.data->rest, el.co, el.data->K, el.f, ge[f], nullptr, false);
       return true;
     });
     scatter_gradient(p, ge, g);
@@ -171,6 +168,7 @@ class CorotationalShell final : public ShellModel {
   double energy_gradient_hessian(const ShellProblem& p, const ShellState& s, Eigen::VectorXd& g,
                                  Triplets& K, bool symmetric) const override {
     check_problem(p, s);
+    const CacheLease lease = lease_cache(p.faces->size());
     const std::size_t F = p.faces->size();
     std::vector<double> e(F);
     std::vector<Vec18> ge(F);
@@ -178,10 +176,10 @@ class CorotationalShell final : public ShellModel {
     K.resize(F * kPerElement);
     for_each_element(F, [&](std::size_t f) {
       ElementState el;
-      if (!evaluate_element(p, s, f, el)) return false;
+      if (!evaluate_element(p, s, f, lease.cache, el)) return false;
       e[f] = el.energy;
       Mat18 Ke;
-      corotational_gradient(el.rest, el.co, el.K, el.f, ge[f], &Ke, symmetric);
+      corotational_gradient(el.data->rest, el.co, el.data->K, el.f, ge[f], &Ke, symmetric);
       const FaceIndices& face = (*p.faces)[f];
       Eigen::Triplet<double>* out = K.data() + f * kPerElement;
       for (int i = 0; i < kElementDofs; ++i) {
@@ -198,6 +196,7 @@ class CorotationalShell final : public ShellModel {
   [[nodiscard]] ElementMeasures measures(const ShellProblem& p,
                                          const ShellState& s) const override {
     check_problem(p, s);
+    const CacheLease lease = lease_cache(p.faces->size());
     const std::size_t F = p.faces->size();
     ElementMeasures out;
     out.membrane_strain.resize(F);
@@ -205,8 +204,8 @@ class CorotationalShell final : public ShellModel {
     out.energy_density.resize(F);
     for_each_element(F, [&](std::size_t f) {
       ElementState el;
-      if (!evaluate_element(p, s, f, el)) return false;
-      const auto& X = el.rest.X;
+      if (!evaluate_element(p, s, f, lease.cache, el)) return false;
+      const auto& X = el.data->rest.X;
       const auto& x = el.co.x;
       // Green-Lagrange membrane strain E = 1/2 (F^T F - I), F the in-plane deformation
       // gradient between the rest and current local coordinates.
@@ -223,13 +222,29 @@ class CorotationalShell final : public ShellModel {
           dkt_curvature_matrix(X, Eigen::Vector3d::Constant(1.0 / 3.0)) * db;
       const Eigen::Vector2d k12 = symmetric_eigenvalues(kappa(0), 0.5 * kappa(2), kappa(1));
       out.bending_curvature[f] = std::max(std::abs(k12(0)), std::abs(k12(1)));
-      out.energy_density[f] = el.energy / el.rest.area;
+      out.energy_density[f] = el.energy / el.data->rest.area;
       return true;
     });
     return out;
   }
 
  private:
+  /// The cache for the duration of one call, or none if another thread is using it.
+  struct CacheLease {
+    std::unique_lock<std::mutex> lock;
+    ElementStiffnessCache* cache = nullptr;
+  };
+  CacheLease lease_cache(std::size_t F) const {
+    CacheLease l{std::unique_lock<std::mutex>(cache_.mutex, std::try_to_lock)};
+    if (l.lock.owns_lock()) {
+      cache_.resize(F);
+      l.cache = &cache_;
+    }
+    return l;
+  }
+
+  mutable ElementStiffnessCache cache_;
+
   static double sum_in_order(const std::vector<double>& e) {
     double total = 0.0;
     for (const double v : e) total += v;

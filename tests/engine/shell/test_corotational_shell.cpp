@@ -233,6 +233,53 @@ TEST(CorotationalShell, ParallelAssemblyIsBitwiseRepeatable) {
   EXPECT_TRUE(same);
 }
 
+// The model keeps each element's rest-dependent stiffness between calls (a memo keyed by the
+// element's rest geometry and material): a model reused across changing rest states, materials
+// and meshes must give bitwise the results of a fresh model, and a rest triangle made
+// degenerate after a good one must still be rejected.
+TEST(CorotationalShell, ReusedModelFollowsRestMaterialAndMeshChangesBitwise) {
+  const auto reused = make_corotational_shell();
+  const auto check = [&](const ShellProblem& p, const ShellState& s, const std::string& what) {
+    const auto fresh = make_corotational_shell();
+    Eigen::VectorXd g1, g2;
+    Triplets t1, t2;
+    const double e1 = reused->energy_gradient_hessian(p, s, g1, t1, true);
+    const double e2 = fresh->energy_gradient_hessian(p, s, g2, t2, true);
+    EXPECT_EQ(e1, e2) << what;
+    ASSERT_EQ(g1.size(), g2.size()) << what;
+    EXPECT_TRUE((g1.array() == g2.array()).all()) << what;
+    ASSERT_EQ(t1.size(), t2.size()) << what;
+    bool same = true;
+    for (std::size_t i = 0; i < t1.size(); ++i) same = same && t1[i].value() == t2[i].value();
+    EXPECT_TRUE(same) << what;
+    EXPECT_EQ(reused->energy(p, s), fresh->energy(p, s)) << what;
+  };
+  PerturbedPanel panel(5);
+  check(panel.setup->problem(), panel.state, "first call");
+  check(panel.setup->problem(), panel.state, "second call");
+  // Relaxation-like change of a few elements' rest geometry and triads.
+  panel.setup->rest.elements[3].X[1] += Vec3(0.05, -0.02, 0.01);
+  panel.setup->rest.elements[7].Q[2] = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY())) *
+                                       panel.setup->rest.elements[7].Q[2];
+  check(panel.setup->problem(), panel.state, "rest changed");
+  panel.setup->materials[0].thickness = 0.2;
+  check(panel.setup->problem(), panel.state, "thickness changed");
+  panel.setup->materials[0].drilling_factor = 0.5;
+  check(panel.setup->problem(), panel.state, "drilling factor changed");
+  // Another mesh (more elements) through the same model, then the panel again.
+  const FlatArrays tube = test::tube(3.0, 10.0, 12, 4);
+  const ProblemSetup tube_setup(tube, test::identity_state(tube.x), material(1.0, 0.45, 0.5));
+  ShellState tube_state = test::identity_state(tube.x);
+  tube_state.x[5] += Vec3(0.1, 0.0, -0.05);
+  check(tube_setup.problem(), tube_state, "other mesh");
+  check(panel.setup->problem(), panel.state, "panel again");
+  // A degenerate rest triangle after a good one is still rejected.
+  auto& e = panel.setup->rest.elements[4];
+  e.X[2] = e.X[0];
+  Eigen::VectorXd g;
+  EXPECT_THROW(reused->energy_gradient(panel.setup->problem(), panel.state, g), InvalidArgument);
+}
+
 /// Plane-stress energy density 1/2 eps : C : eps per unit thickness (eps a tensor).
 double membrane_energy_density(const Eigen::Matrix2d& eps, const ShellMaterial& m) {
   const double E = m.youngs_modulus, nu = m.poisson_ratio;
