@@ -70,6 +70,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       Eigen::SparseMatrix<double> A = full.tangent + damp_k * K_damp;
       A.diagonal() += mass * damp_m;
       have_factor = solver->factorize(A);
+      ++result.factorizations;
       return have_factor;
     };
     for (int it = 0;; ++it) {

@@ -4,6 +4,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 
+#include "blas_threads.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -96,6 +97,7 @@ class CholmodSolver final : public LinearSolver {
   }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     if (use_fallback_) return fallback_.solve(b, x);
+    const detail::SingleThreadedBlas one_thread;  // why: blas_threads.hpp
     x = llt_.solve(b);
     return llt_.info() == Eigen::Success && x.allFinite();
   }

@@ -36,6 +36,7 @@ struct DynamicsResult {
   bool ok = true;
   int steps_done = 0;
   int newton_iterations = 0;
+  int factorizations = 0;       ///< step matrices assembled and factorised
   double kinetic_energy = 0.0;  ///< N*mm at the end
   double strain_energy = 0.0;   ///< N*mm at the end
   double residual = 0.0;        ///< static residual |g_int - f_ext| at the end (free DOFs)

@@ -1,0 +1,27 @@
+#pragma once
+// BLAS thread count control (private to engine/src/sim).
+//
+// Why: CHOLMOD's supernodal triangular solves are sequences of small dense BLAS-2 calls (one per
+// supernode). OpenBLAS hands each to its thread pool, and on this 2-core machine the hand-over
+// costs more than the work: a 15k-DOF back-substitution takes about twice as long with two
+// BLAS threads as with one (docs/performance.md). The factorisation, BLAS-3 on large
+// supernodes, does profit from threads, so only the solve phase is made single-threaded.
+//
+// OpenBLAS is looked up at run time (dlsym), so the engine links against any BLAS; with another
+// BLAS this is a no-op.
+
+namespace sutura::engine::detail {
+
+/// Runs BLAS on one thread while alive, then restores the previous count.
+class SingleThreadedBlas {
+ public:
+  SingleThreadedBlas();
+  ~SingleThreadedBlas();
+  SingleThreadedBlas(const SingleThreadedBlas&) = delete;
+  SingleThreadedBlas& operator=(const SingleThreadedBlas&) = delete;
+
+ private:
+  int previous_ = 0;  ///< 0: nothing to restore
+};
+
+}  // namespace sutura::engine::detail
