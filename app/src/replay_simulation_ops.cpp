@@ -185,7 +185,8 @@ json Run::execute(const SimulateOp& op) {
   if (!r.ok) throw std::runtime_error(r.message);
   for (SceneObject* o : objs) commit_pending_loads(*o);
   return {{"model", model->name()}, {"steps", r.steps_done},
-          {"newton_iterations", r.newton_iterations}, {"kinetic_energy", r.kinetic_energy},
+          {"newton_iterations", r.newton_iterations}, {"factorizations", r.factorizations},
+          {"step_cuts", r.step_cuts}, {"kinetic_energy", r.kinetic_energy},
           {"strain_energy", r.strain_energy}, {"residual", r.residual}};
 }
 

@@ -165,6 +165,7 @@ SimulateOp parse_simulate(Fields& f) {
   p.tolerance = f.optional_positive("tolerance", p.tolerance);
   if (p.tolerance >= 1.0) f.fail("tolerance", "must be below 1");
   p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 1000);
+  p.max_step_cuts = f.optional_int("max_step_cuts", p.max_step_cuts, 0, 10);
   p.linear_solver = linear_solver(f, p.linear_solver);
   if (auto r = f.optional_object("relax")) {
     engine::RelaxationParams rp;
@@ -174,6 +175,8 @@ SimulateOp parse_simulate(Fields& f) {
     rp.s_end = r->optional_number("until", 1.0);
     if (!(rp.s_end > 0.0 && rp.s_end <= 1.0)) r->fail("until", "must be in (0, 1]");
     rp.settle = r->optional_bool("settle", rp.settle);
+    if (!rp.settle && r->has("settle_steps"))
+      r->fail("settle_steps", "has no effect with \"settle\": false (no settling at all)");
     rp.settle_steps = r->optional_int("settle_steps", rp.settle_steps, 0, 1000000);
     rp.statics.tolerance = r->optional_positive("tolerance", rp.statics.tolerance);
     if (rp.statics.tolerance >= 1.0) r->fail("tolerance", "must be below 1");

@@ -159,6 +159,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"solve\", \"model\": \"membrane\"}\n", 2, "model",
                 "not one of"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"dt\": 0}\n", 2, "dt", "greater than 0"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"max_step_cuts\": 11}\n", 2, "max_step_cuts",
+                "between"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
+                          "\"settle_steps\": 30}}\n",
+                2, "relax.settle_steps", "no effect"},
         BadCase{kHeader + "{\"op\": \"check\", \"probe\": \"p\", \"quantity\": \"uz\", "
                           "\"value\": 1}\n",
                 2, "rel_tol", "rel_tol and/or abs_tol"}),

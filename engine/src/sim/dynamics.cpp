@@ -1,6 +1,7 @@
 #include "sutura/engine/sim/dynamics.hpp"
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "sutura/engine/errors.hpp"
@@ -17,6 +18,8 @@ void check(const DynamicsParams& p) {
   if (!(p.force_reference >= 0.0)) throw InvalidArgument("force_reference must be >= 0");
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) throw InvalidArgument("tolerance must be in (0, 1)");
   if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
+  if (p.max_step_cuts < 0 || p.max_step_cuts > 10)
+    throw InvalidArgument("max_step_cuts must be in [0, 10]");
 }
 
 }  // namespace
@@ -27,7 +30,6 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   DynamicsResult result;
   const DofMap map(sys);
   const int d = sys.dofs_per_node();
-  const double h = params.dt;
   const Eigen::VectorXd mass = map.restrict(lumped_mass(sys));
   auto solver = make_linear_solver(params.linear_solver, params.pcg);
   if (state.velocity.size() != static_cast<Eigen::Index>(sys.num_dofs()))
@@ -39,28 +41,31 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   // stiffness in the damping term, is the tangent of the last rebuild, so the damping force
   // stays linear in the velocity. Reuse is what makes a step cost about one gradient
   // evaluation and one back-substitution instead of a full assembly and factorisation.
-  const double damp_m = 1.0 / (h * h) + params.mass_damping / h;
-  const double damp_k = params.stiffness_damping / h;
   TangentAssembler assembler;
   Eigen::SparseMatrix<double> K_damp;
   bool have_factor = false;
+  double factor_h = 0.0;  // the step size the factorised matrix was built for
   double energy_scale = 0.0;
-  for (int step = 0; step < params.steps; ++step) {
-    if (hook && !hook(step)) break;
-    const DynamicsState start = state;
+  Evaluation ev;
+
+  // One backward Euler step of size h from the current state; returns why it failed ("" if
+  // it did not). The caller restores the state after a failure.
+  const auto step_once = [&](double h) -> std::string {
+    const double damp_m = 1.0 / (h * h) + params.mass_damping / h;
+    const double damp_k = params.stiffness_damping / h;
+    if (h != factor_h) have_factor = false;
     const Eigen::VectorXd v0 = map.restrict(state.velocity);
     // Backward Euler for the increment du = h v1:
     //   R(du) = M (du/h - v0)/h + C du/h + g(x0 + du) - f_ext = 0,  C = alpha M + beta K_d.
     // Predictor: constant velocity, du = h v0.
     Eigen::VectorXd du = h * v0;
     apply_increment(state.shell, map.expand(du), d);
-    Evaluation ev = evaluate(sys, map, state.shell, 1.0, false);
+    ev = evaluate(sys, map, state.shell, 1.0, false);
     const auto residual = [&]() -> Eigen::VectorXd {
       Eigen::VectorXd R = mass.cwiseProduct(du * damp_m - v0 / h) + ev.residual;
       if (damp_k != 0.0 && K_damp.rows() == R.size()) R += damp_k * (K_damp * du);
       return R;
     };
-    std::string failure;
     double ref = -1.0, previous = -1.0;
     // K_d may only change at the start of a step: changing it mid-step would move the root of
     // R while Newton chases it.
@@ -70,63 +75,82 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       Eigen::SparseMatrix<double> A = full.tangent + damp_k * K_damp;
       A.diagonal() += mass * damp_m;
       have_factor = solver->factorize(A);
+      factor_h = h;
       ++result.factorizations;
       return have_factor;
     };
     for (int it = 0;; ++it) {
       Eigen::VectorXd R = residual();
       double rnorm = R.norm();
-      if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy)) {
-        failure = "the state became non-finite (NaN/inf)";
-        break;
-      }
+      if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
+        return "the state became non-finite (NaN/inf)";
       if (ref < 0.0) ref = std::max({rnorm, ev.external_norm, params.force_reference, 1e-300});
       if (rnorm <= params.tolerance * ref) break;
       if (it == params.max_iterations) {
         std::ostringstream m;
         m << "Newton did not converge in " << params.max_iterations << " iterations (residual "
           << rnorm << ")";
-        failure = m.str();
-        break;
+        return m.str();
       }
       // A matrix that no longer halves the residual is stale: rebuild it here, before it is
       // used, from the tangent at the current iterate (then this is a full Newton step).
       if (!have_factor || (previous > 0.0 && rnorm > 0.5 * previous)) {
-        if (!rebuild(it == 0)) {
-          failure = "the step matrix is singular";
-          break;
-        }
+        if (!rebuild(it == 0)) return "the step matrix is singular";
         R = residual();  // the damping term changed with K_d
         rnorm = R.norm();
       }
       previous = rnorm;
       Eigen::VectorXd delta;
-      if (!solver->solve(-R, delta)) {
-        failure = "the linear solve failed: " + solver->last_note();
-        break;
-      }
+      if (!solver->solve(-R, delta)) return "the linear solve failed: " + solver->last_note();
       du += delta;
       apply_increment(state.shell, map.expand(delta), d);
       ev = evaluate(sys, map, state.shell, 1.0, false);
       ++result.newton_iterations;
     }
-    if (failure.empty()) {
-      state.velocity = map.expand(du / h);
-      const double kinetic = 0.5 * du.dot(mass.cwiseProduct(du)) / (h * h);
-      const double total = kinetic + ev.internal_energy;
-      if (energy_scale > 0.0 && total > 1e12 * energy_scale)
-        failure = "the energy exploded (" + std::to_string(total) + " N*mm)";
-      energy_scale = std::max(energy_scale, total);
-      result.kinetic_energy = kinetic;
-      result.strain_energy = ev.internal_energy;
-      result.residual = ev.residual.norm();
+    state.velocity = map.expand(du / h);
+    const double kinetic = 0.5 * du.dot(mass.cwiseProduct(du)) / (h * h);
+    const double total = kinetic + ev.internal_energy;
+    if (energy_scale > 0.0 && total > 1e12 * energy_scale)
+      return "the energy exploded (" + std::to_string(total) + " N*mm)";
+    energy_scale = std::max(energy_scale, total);
+    result.kinetic_energy = kinetic;
+    result.strain_energy = ev.internal_energy;
+    result.residual = ev.residual.norm();
+    return {};
+  };
+
+  // A step of size h, retried as two steps of h/2 (recursively) when it fails. Why: a step
+  // through a sharp change (a fold snapping through, a contact) may need a smaller step only
+  // there; a fixed dt would have to be small for the whole run.
+  std::function<std::string(double, int)> advance = [&](double h, int depth) -> std::string {
+    const DynamicsState start = state;
+    const Evaluation ev_start = ev;
+    std::string failure = step_once(h);
+    if (failure.empty()) return {};
+    state = start;
+    ev = ev_start;
+    if (depth == params.max_step_cuts) return failure;
+    ++result.step_cuts;
+    for (int half = 0; half < 2; ++half) {
+      failure = advance(0.5 * h, depth + 1);
+      if (!failure.empty()) {
+        state = start;
+        ev = ev_start;
+        return failure;
+      }
     }
+    return {};
+  };
+
+  for (int step = 0; step < params.steps; ++step) {
+    if (hook && !hook(step)) break;
+    const std::string failure = advance(params.dt, 0);
     if (!failure.empty()) {
-      state = start;
       result.ok = false;
       std::ostringstream m;
-      m << "dynamics step " << step + 1 << " of " << params.steps << " failed: " << failure
-        << "; rolled back to the state after step " << step;
+      m << "dynamics step " << step + 1 << " of " << params.steps << " failed";
+      if (params.max_step_cuts > 0) m << " (also as " << (1 << params.max_step_cuts) << " sub-steps)";
+      m << ": " << failure << "; rolled back to the state after step " << step;
       result.message = m.str();
       return result;
     }

@@ -38,6 +38,38 @@ TEST(Dynamics, DampedMotionSettlesToStaticEquilibrium) {
   EXPECT_LT(r.kinetic_energy, 1e-6 * r.strain_energy);
 }
 
+// A step that Newton cannot converge in its iteration budget succeeds as smaller sub-steps;
+// without retries the same run fails and is rolled back.
+TEST(Dynamics, FailedStepIsRetriedInHalves) {
+  // A heavy strip (density 1e-4 t/mm^3) under a sudden large load: a long step is nearly a
+  // static solve to a large deflection, a short one is dominated by inertia (easy).
+  Cantilever c(make_corotational_shell(), 2.0, 10, 1);
+  c.materials[0].density = 1e-4;
+  DynamicsParams p;
+  p.dt = 1e-2;
+  p.steps = 3;
+  p.mass_damping = 200.0;
+  p.max_iterations = 8;
+  p.max_step_cuts = 0;
+  DynamicsState s0{c.state, {}};
+  const DynamicsResult fail = simulate_dynamics(c.sys, s0, p);
+  ASSERT_FALSE(fail.ok);
+  EXPECT_EQ(fail.step_cuts, 0);
+  EXPECT_NE(fail.message.find("Newton did not converge"), std::string::npos) << fail.message;
+  for (std::size_t i = 0; i < c.state.x.size(); ++i)
+    EXPECT_EQ(s0.shell.x[i], c.state.x[i]);
+  p.max_step_cuts = 6;
+  DynamicsState s1{c.state, {}};
+  int hook_calls = 0;
+  const DynamicsResult ok = simulate_dynamics(c.sys, s1, p, [&](int) { return ++hook_calls > 0; });
+  ASSERT_TRUE(ok.ok) << ok.message;
+  EXPECT_EQ(ok.steps_done, 3);
+  EXPECT_EQ(hook_calls, 3);  // once per step of dt, not per sub-step
+  EXPECT_GT(ok.step_cuts, 0);
+  c.state = s1.shell;
+  EXPECT_GT(c.tip_displacement().z(), 0.5);  // the strip did swing up
+}
+
 TEST(Dynamics, HookCanStopTheRun) {
   Cantilever c(make_corotational_shell(), 0.05, 6, 1);
   DynamicsParams p;
@@ -74,5 +106,8 @@ TEST(Dynamics, RejectsBadParameters) {
   EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
   p = {};
   p.mass_damping = -1.0;
+  EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
+  p = {};
+  p.max_step_cuts = 11;
   EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
 }

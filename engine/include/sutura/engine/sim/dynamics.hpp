@@ -20,6 +20,9 @@ struct DynamicsParams {
   double stiffness_damping = 1e-3;  ///< Rayleigh beta, s, >= 0
   double tolerance = 1e-6;     ///< Newton tolerance per step, relative to the step's first residual
   int max_iterations = 20;     ///< Newton iterations per step
+  /// A failed step is retried as two steps of half the size, recursively, down to
+  /// dt / 2^max_step_cuts; in [0, 10].
+  int max_step_cuts = 4;
   /// N, >= 0: floor of the force the step tolerance is relative to (besides the step's first
   /// residual and |f_ext|); 0 = none. Steps taken at equilibrium need it (round-off residual).
   double force_reference = 0.0;
@@ -37,6 +40,7 @@ struct DynamicsResult {
   int steps_done = 0;
   int newton_iterations = 0;
   int factorizations = 0;       ///< step matrices assembled and factorised
+  int step_cuts = 0;            ///< failed (sub-)steps retried as two half steps
   double kinetic_energy = 0.0;  ///< N*mm at the end
   double strain_energy = 0.0;   ///< N*mm at the end
   double residual = 0.0;        ///< static residual |g_int - f_ext| at the end (free DOFs)
@@ -48,8 +52,10 @@ struct DynamicsResult {
 /// Return false to stop.
 using StepHook = std::function<bool(int step)>;
 
-/// Advances `state` by params.steps steps of size dt. Divergence (NaN, energy blow-up, Newton
-/// failure) rolls back to the last good step and returns ok = false with a message.
+/// Advances `state` by params.steps steps of size dt (a failed step is retried in halves, see
+/// max_step_cuts; the hook is called once per step of dt). Divergence (NaN, energy blow-up,
+/// Newton failure) that persists at the smallest sub-step rolls back to the last good step and
+/// returns ok = false with a message.
 DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
                                  const DynamicsParams& params, const StepHook& hook = {});
 
