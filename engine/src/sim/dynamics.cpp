@@ -20,6 +20,8 @@ void check(const DynamicsParams& p) {
   if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
   if (p.max_step_cuts < 0 || p.max_step_cuts > 10)
     throw InvalidArgument("max_step_cuts must be in [0, 10]");
+  if (!(p.min_area_ratio >= 0.0 && p.min_area_ratio < 1.0))
+    throw InvalidArgument("min_area_ratio must be in [0, 1)");
 }
 
 }  // namespace
@@ -54,6 +56,10 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     const double damp_m = 1.0 / (h * h) + params.mass_damping / h;
     const double damp_k = params.stiffness_damping / h;
     if (h != factor_h) have_factor = false;
+    const double area_floor =
+        params.min_area_ratio > 0.0
+            ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state.shell))
+            : 0.0;
     const Eigen::VectorXd v0 = map.restrict(state.velocity);
     // Backward Euler for the increment du = h v1:
     //   R(du) = M (du/h - v0)/h + C du/h + g(x0 + du) - f_ext = 0,  C = alpha M + beta K_d.
@@ -107,6 +113,9 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       ev = evaluate(sys, map, state.shell, 1.0, false);
       ++result.newton_iterations;
     }
+    if (area_floor > 0.0 && min_area_ratio(sys.problem, state.shell) < area_floor)
+      return "a triangle collapsed (area below " + std::to_string(params.min_area_ratio) +
+             " of its rest area)";
     state.velocity = map.expand(du / h);
     const double kinetic = 0.5 * du.dot(mass.cwiseProduct(du)) / (h * h);
     const double total = kinetic + ev.internal_energy;

@@ -1,6 +1,7 @@
 #include "sutura/engine/sim/shell_system.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace sutura::engine {
 
@@ -54,6 +55,19 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
   if (with_tangent)
     as.assemble(K, map.full_to_free, static_cast<Eigen::Index>(map.num_free()), ev.tangent);
   return ev;
+}
+
+double min_area_ratio(const ShellProblem& p, const ShellState& s) {
+  double ratio = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < p.faces->size(); ++f) {
+    const FaceIndices& face = (*p.faces)[f];
+    const auto& X = p.rest->elements[f].X;
+    const double rest = (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    const Vec3& a = s.x[face[0]];
+    const double now = (s.x[face[1]] - a).cross(s.x[face[2]] - a).norm();
+    if (rest > 0.0) ratio = std::min(ratio, now / rest);
+  }
+  return ratio;
 }
 
 Eigen::VectorXd lumped_mass(const ShellSystem& sys) {

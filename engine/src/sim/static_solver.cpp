@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "sutura/engine/errors.hpp"
@@ -19,6 +20,8 @@ void check(const StaticSolverParams& p) {
   if (!(p.tolerance > 0.0 && p.tolerance < 1.0)) throw InvalidArgument("tolerance must be in (0, 1)");
   if (p.max_iterations < 1) throw InvalidArgument("max_iterations must be at least 1");
   if (p.max_step_cuts < 0) throw InvalidArgument("max_step_cuts must be >= 0");
+  if (!(p.min_area_ratio >= 0.0 && p.min_area_ratio < 1.0))
+    throw InvalidArgument("min_area_ratio must be in [0, 1)");
   if (!(p.energy_blowup > 1.0)) throw InvalidArgument("energy_blowup must be > 1");
 }
 
@@ -55,10 +58,13 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
   double step_length = 1.0;
   double first_work = -1.0;
   double lm_shift = 0.0;  // the Levenberg-Marquardt shift of the last iteration (0: none)
+  bool collapsed_trial = false;  // a line-search trial was rejected for a collapsed triangle
   for (int it = 0;; ++it) {
     const double rnorm = ev.residual.norm();
     if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
-      return "the state became non-finite (NaN/inf)";
+      return collapsed_trial ? "every trial step collapsed a triangle (area below " +
+                                   std::to_string(params.min_area_ratio) + " of its rest area)"
+                             : "the state became non-finite (NaN/inf)";
     if (ev.internal_energy > params.energy_blowup * energy_scale)
       return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
     result.history.push_back({lambda, it, rnorm, ev.internal_energy, step_length});
@@ -107,10 +113,22 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
         std::abs(s0) <= params.tolerance * params.tolerance * first_work && it > 0;
     const Eigen::VectorXd du_full = map.expand(du);
 
+    // A trial that collapses a triangle further than the current state has (below
+    // min_area_ratio of its rest area) counts as non-finite, so the line search backs off.
+    const double area_floor =
+        params.min_area_ratio > 0.0
+            ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state))
+            : 0.0;
     const auto trial_at = [&](double a, ShellState& trial) {
       trial = state;
       apply_increment(trial, a * du_full, d);
-      return evaluate(sys, map, trial, lambda, true, true, &assembler);
+      Evaluation e = evaluate(sys, map, trial, lambda, true, true, &assembler);
+      if (area_floor > 0.0 && min_area_ratio(sys.problem, trial) < area_floor) {
+        collapsed_trial = true;
+        e.internal_energy = std::numeric_limits<double>::quiet_NaN();
+        e.residual.setConstant(std::numeric_limits<double>::quiet_NaN());
+      }
+      return e;
     };
     ShellState trial;
     Evaluation ev_trial = trial_at(1.0, trial);

@@ -124,7 +124,52 @@ TEST(StaticSolver, LinearSolversAgree) {
   }
 }
 
+TEST(ShellSystem, MinAreaRatioComparesCurrentAndRestAreas) {
+  Cantilever c(make_corotational_shell(), 0.0, 2, 1, 2.0, 1.0);  // 4 triangles of area 1/2
+  EXPECT_DOUBLE_EQ(min_area_ratio(c.sys.problem, c.state), 1.0);
+  ShellState squashed = c.state;
+  // The strip spans y in [-0.5, 0.5]: move its corner (2, 0.5) to 1/100 of the width above the
+  // opposite edge, so the triangles using it keep 1/100 of their height.
+  const auto v = select_vertices(c.mesh.positions(), SelectNearest{{Vec3(2, 0.5, 0)}})[0];
+  ASSERT_DOUBLE_EQ(c.state.x[v.index()].y(), 0.5);
+  squashed.x[v.index()].y() = -0.49;
+  EXPECT_NEAR(min_area_ratio(c.sys.problem, squashed), 0.01, 1e-12);
+  ShellState moved = c.state;  // a rigid motion keeps every area
+  const Eigen::AngleAxisd R(0.7, Vec3(1, 2, 3).normalized());
+  for (Vec3& x : moved.x) x = R * x + Vec3(5, -2, 1);
+  EXPECT_NEAR(min_area_ratio(c.sys.problem, moved), 1.0, 1e-12);
+}
+
+// A 1 x 1 mm square (two triangles) clamped on one side and pushed in its plane from the
+// other: the flat corotational elements do not resist being squashed through zero area, so
+// without the guard the solver "converges" at a load factor where a triangle keeps 0.8 % of
+// its area. With the guard (default 1e-2) such trial states are rejected and the solve stops
+// with a message naming the collapse, at a state with no collapsed triangle.
+TEST(StaticSolver, TrialStatesThatCollapseATriangleAreRejected) {
+  for (const double guard : {0.0, 1e-2}) {
+    Cantilever c(make_corotational_shell(), 0.0, 1, 1, 1.0, 1.0, 0.1, 1.0);
+    for (auto& l : c.sys.loads.nodal) l.force = Vec3(-0.025, 0.0, 0.0);
+    StaticSolverParams p;
+    p.min_area_ratio = guard;
+    ShellState s = c.state;
+    const StaticResult r = solve_static(c.sys, s, p);
+    ASSERT_FALSE(r.converged);
+    if (guard == 0.0) {
+      EXPECT_LT(min_area_ratio(c.sys.problem, s), 0.01);  // why the guard exists
+    } else {
+      EXPECT_GE(min_area_ratio(c.sys.problem, s), 0.01);
+      EXPECT_NE(r.message.find("collapsed a triangle"), std::string::npos) << r.message;
+    }
+  }
+}
+
 TEST(StaticSolver, RejectsBadParameters) {
+  {
+    Cantilever c(make_corotational_shell(), 1.0, 4, 1);
+    StaticSolverParams p;
+    p.min_area_ratio = 1.0;
+    EXPECT_THROW(solve_static(c.sys, c.state, p), InvalidArgument);
+  }
   Cantilever c(make_corotational_shell(), 1.0);
   StaticSolverParams p;
   p.load_steps = 0;

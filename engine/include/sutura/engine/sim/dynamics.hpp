@@ -23,6 +23,10 @@ struct DynamicsParams {
   /// A failed step is retried as two steps of half the size, recursively, down to
   /// dt / 2^max_step_cuts; in [0, 10].
   int max_step_cuts = 4;
+  /// A step that leaves a triangle below this fraction of its rest area (and below where it
+  /// started) fails and is retried in halves (see min_area_ratio in shell_system.hpp);
+  /// in [0, 1), 0 = off.
+  double min_area_ratio = 1e-2;
   /// N, >= 0: floor of the force the step tolerance is relative to (besides the step's first
   /// residual and |f_ext|); 0 = none. Steps taken at equilibrium need it (round-off residual).
   double force_reference = 0.0;

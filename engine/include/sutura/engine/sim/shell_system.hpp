@@ -59,6 +59,13 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
                     bool with_tangent, bool load_stiffness = true,
                     TangentAssembler* assembler = nullptr);
 
+/// Smallest ratio of a triangle's current area to its rest area (from the per-element rest
+/// corners), over all faces; +inf without faces. Solvers use it to reject states in which an
+/// element has collapsed: the flat corotational elements do not resist being squashed through
+/// zero area, so without the test a crumpling region collapses elements instead of wrinkling.
+/// Cost O(F).
+double min_area_ratio(const ShellProblem& problem, const ShellState& s);
+
 /// Lumped nodal masses (per full DOF): translational rho*t*A/3 per corner; rotational
 /// rho*t*A/3 * max(t^2/12, A/12) so rotations are not massless (no effect on statics).
 Eigen::VectorXd lumped_mass(const ShellSystem& sys);

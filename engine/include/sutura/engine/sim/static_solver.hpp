@@ -41,6 +41,10 @@ struct StaticSolverParams {
   /// (the rest-shape relaxation); off for load-driven analyses (benchmarks pass limit points
   /// on the true tangent).
   bool shift_indefinite = false;
+  /// A Newton trial state in which a triangle's area falls below this fraction of its rest
+  /// area (min_area_ratio) counts as a failed trial, like a non-finite one: the line search
+  /// backs off instead of stepping into a collapsed element. In [0, 1); 0 = off.
+  double min_area_ratio = 1e-2;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
   /// Linear static analysis: one solve K(u0) du = -r(u0) at lambda_end with the stiffness of
