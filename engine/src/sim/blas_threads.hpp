@@ -2,10 +2,11 @@
 // BLAS thread count control (private to engine/src/sim).
 //
 // Why: CHOLMOD's supernodal triangular solves are sequences of small dense BLAS-2 calls (one per
-// supernode). OpenBLAS hands each to its thread pool, and on this 2-core machine the hand-over
-// costs more than the work: a 15k-DOF back-substitution takes about twice as long with two
-// BLAS threads as with one (docs/performance.md). The factorisation, BLAS-3 on large
-// supernodes, does profit from threads, so only the solve phase is made single-threaded.
+// supernode). OpenBLAS hands each to its thread pool; between OpenMP element loops on a 2-core
+// machine the hand-over and the spinning threads cost more than they save: 50 implicit steps at
+// 5k elements took 3.7 s with two BLAS threads and 1.9 s with one (docs/performance.md). The
+// factorisation, BLAS-3 on large supernodes, does profit from threads, so only the solve phase
+// is made single-threaded.
 //
 // OpenBLAS is looked up at run time (dlsym), so the engine links against any BLAS; with another
 // BLAS this is a no-op.
