@@ -158,7 +158,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       result.ok = false;
       std::ostringstream m;
       m << "dynamics step " << step + 1 << " of " << params.steps << " failed";
-      if (params.max_step_cuts > 0) m << " (also as " << (1 << params.max_step_cuts) << " sub-steps)";
+      if (params.max_step_cuts > 0) m << " (also in sub-steps down to dt/" << (1 << params.max_step_cuts) << ")";
       m << ": " << failure << "; rolled back to the state after step " << step;
       result.message = m.str();
       return result;
