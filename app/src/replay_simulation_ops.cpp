@@ -143,7 +143,8 @@ json Run::execute(const SolveOp& op) {
                              " is below the load factor already reached (" +
                              std::to_string(start) + ")");
   const auto model = make_model(op.model);
-  MergedSystem merged(objs, *model);
+  const engine::AreaBarrierParams barrier;
+  MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &barrier : nullptr);
   engine::StaticSolverParams params = op.params;
   params.lambda_start = start;
   params.lambda_end = op.load_factor;
@@ -169,7 +170,9 @@ json Run::execute(const SimulateOp& op) {
   if (op.relax) return relax(op);
   const auto objs = objects_named(op.objects);
   const auto model = make_model(op.model);
-  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr);
+  const engine::AreaBarrierParams barrier;
+  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr,
+                      op.collapse_barrier ? &barrier : nullptr);
   engine::DynamicsState ds{merged.state(), merged.velocity()};
   bool cancelled = false;
   const engine::StepHook hook = [&](int step) {
@@ -209,7 +212,9 @@ json Run::relax(const SimulateOp& op) {
                              " is below the relaxation already reached (" +
                              std::to_string(s_start) + ")");
   const auto model = make_model(op.model);
-  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr);
+  const engine::AreaBarrierParams barrier;
+  MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr,
+                      op.collapse_barrier ? &barrier : nullptr);
   const engine::RestState y0 = merged.relax_from();
   const engine::RestState x0 = merged.rest();
   merged.rest() = engine::rest_at(y0, x0, s_start);

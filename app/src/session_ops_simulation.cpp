@@ -138,6 +138,7 @@ SolveOp parse_solve(Fields& f) {
   SolveOp op;
   op.objects = f.optional_string_list("objects");
   op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
+  op.collapse_barrier = f.optional_bool("collapse_barrier", op.collapse_barrier);
   op.load_factor = f.optional_positive("load_factor", op.load_factor);
   if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
   auto& p = op.params;
@@ -155,6 +156,7 @@ SimulateOp parse_simulate(Fields& f) {
   SimulateOp op;
   op.objects = f.optional_string_list("objects");
   op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
+  op.collapse_barrier = f.optional_bool("collapse_barrier", op.collapse_barrier);
   auto& p = op.params;
   p.dt = f.optional_positive("dt", p.dt);
   p.steps = f.optional_int("steps", p.steps, 1, 10000000);

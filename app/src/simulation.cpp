@@ -33,7 +33,8 @@ void append_loads(engine::Loads& into, const engine::Loads& from, std::size_t no
 }  // namespace
 
 MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
-                           const engine::ShellModel& model, const engine::ContactParams* contact)
+                           const engine::ShellModel& model, const engine::ContactParams* contact,
+                           const engine::AreaBarrierParams* barrier)
     : objects_(objects) {
   if (objects.empty()) throw std::invalid_argument("nothing to simulate: no objects");
   std::size_t nodes = 0;
@@ -90,6 +91,10 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
   if (contact != nullptr && objects.size() >= 2) {
     contact_ = std::make_unique<engine::ContactTerm>(system_.problem, surfaces, *contact);
     system_.terms.push_back(contact_.get());
+  }
+  if (barrier != nullptr) {
+    barrier_ = std::make_unique<engine::AreaBarrier>(system_.problem, *barrier);
+    system_.terms.push_back(barrier_.get());
   }
 
   velocity_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nodes * d));

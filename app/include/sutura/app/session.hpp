@@ -175,6 +175,7 @@ struct SolveOp {
   std::string model = "corotational";
   double load_factor = 1.0;  ///< fraction of the pending loads to reach, (0, 1]
   engine::StaticSolverParams params;
+  bool collapse_barrier = false;  ///< add engine::AreaBarrier (defaults) to the system
 };
 
 /// Implicit dynamics of the named objects (all when empty).
@@ -187,6 +188,7 @@ struct SimulateOp {
   std::optional<engine::RelaxationParams> relax;
   /// Penalty contact between the simulated objects (none when absent).
   std::optional<engine::ContactParams> contact;
+  bool collapse_barrier = false;  ///< add engine::AreaBarrier (defaults) to the system
 };
 
 /// Records displacement and rotation of the vertex nearest to `point` (both measured from

@@ -10,6 +10,7 @@
 
 #include "sutura/app/workspace.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/area_barrier.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
@@ -26,8 +27,10 @@ class MergedSystem {
   /// With `contact` and at least two objects, a penalty contact term between every pair of
   /// objects is added to the system (no self-contact); engine::InvalidArgument for invalid
   /// contact parameters.
+  /// With `barrier`, an engine::AreaBarrier over all faces is added too.
   MergedSystem(const std::vector<SceneObject*>& objects, const engine::ShellModel& model,
-               const engine::ContactParams* contact = nullptr);
+               const engine::ContactParams* contact = nullptr,
+               const engine::AreaBarrierParams* barrier = nullptr);
 
   [[nodiscard]] const engine::ShellSystem& system() const { return system_; }
   /// The merged rest state the system points at (a relaxation rewrites it as it runs).
@@ -52,6 +55,7 @@ class MergedSystem {
   std::vector<int> face_material_;
   engine::ShellSystem system_;
   std::unique_ptr<engine::ContactTerm> contact_;  ///< in system_.terms when present
+  std::unique_ptr<engine::AreaBarrier> barrier_;  ///< in system_.terms when present
   engine::ShellState state_;
   Eigen::VectorXd velocity_;
 };
