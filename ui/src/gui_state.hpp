@@ -55,6 +55,7 @@ struct SimulationSettings {
   int steps = 60;
   float dt = 1e-3f;
   int relax_steps = 40;
+  bool collapse_barrier = false;  ///< records "collapse_barrier": true (session-format.md)
 };
 
 struct Message {

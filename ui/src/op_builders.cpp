@@ -53,9 +53,10 @@ json patch_op(const std::string& object, const std::string& shape, const engine:
           {"end", point_json(lip_end)}, {"width", width}, {"material", material}};
 }
 
-json simulate_op(int steps, double dt, int relax_steps) {
+json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
   json op = {{"op", "simulate"}, {"steps", steps}, {"dt", dt}};
   if (relax_steps > 0) op["relax"] = {{"steps", relax_steps}};
+  if (collapse_barrier) op["collapse_barrier"] = true;
   return op;
 }
 

@@ -38,13 +38,20 @@ void simulate_section(GuiState& s) {
   ImGui::SliderInt("relax steps", &s.simulation.relax_steps, 0, 200);
   ImGui::EndDisabled();
   if (no_relax) tooltip_for_last_item(*no_relax);
+  noted_checkbox(s.widgets, "Resist collapse (gathered tissue)", &s.simulation.collapse_barrier);
+  tooltip_for_last_item(
+      "Adds the collapse barrier: triangles resist being squashed below a quarter of their rest "
+      "area. Needed where a suture gathers tissue more finely than the mesh can wrinkle "
+      "(e.g. a subclavian flap).");
   ImGui::EndDisabled();
 
   if (gated_button(s.widgets, "Run simulation", s.why_not(Action::StartSimulation, "simulate"),
                    "Relax the rest shape (s from 0 to 1), then settle; runs in the background.")) {
     const int relax = no_relax ? 0 : s.simulation.relax_steps;
     std::string why;
-    if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax), why)) {
+    if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax,
+                                       s.simulation.collapse_barrier),
+                           why)) {
       s.stages.simulation_started();
       s.tool = Tool::Navigate;
       cancel_draft(s);
