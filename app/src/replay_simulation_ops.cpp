@@ -121,9 +121,8 @@ json Run::execute(const BodyForceOp& op) {
   } else {
     // rho * t * a on each face's rest area, lumped equally to its corners.
     for (std::size_t e = 0; e < obj.mesh.num_faces(); ++e) {
-      const auto& X = obj.sim.rest.elements[e].X;
       const auto& m = obj.sim.materials[obj.sim.face_material[e]];
-      const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+      const double area = engine::rest_area(obj.sim.rest.elements[e]);
       for (int k = 0; k < 3; ++k)
         obj.sim.pending_loads.nodal.push_back(
             {static_cast<std::size_t>(obj.mesh.faces()[e][k]),

@@ -65,8 +65,7 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
     const auto body_to_nodal = [&](const engine::Loads& l, engine::Loads& into) {
       if (l.body_force_per_area.isZero()) return;
       for (std::size_t e = 0; e < o->mesh.num_faces(); ++e) {
-        const auto& X = o->sim.rest.elements[e].X;
-        const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+        const double area = engine::rest_area(o->sim.rest.elements[e]);
         for (int k = 0; k < 3; ++k)
           into.nodal.push_back({nodes + o->mesh.faces()[e][k], area / 3.0 * l.body_force_per_area,
                                 engine::Vec3::Zero()});

@@ -97,6 +97,29 @@ class RenderSnapshot : public ::testing::Test {
     return renderer_->render(scene, camera, w, h, options);
   }
 
+  /// A unit sphere coloured by height with a legend labelled `label`, rendered w x h with and
+  /// without the legend. Holds the mesh and scalars the scene only views.
+  struct HeightLegend {
+    TestMesh sphere = uv_sphere(1.0f, 32, 64);
+    std::vector<float> z;
+    Scene scene;
+    Camera camera;
+    Image with, without;
+    HeightLegend(const std::string& label, int w, int h) {
+      for (std::size_t v = 0; v < sphere.vertex_count(); ++v) z.push_back(sphere.positions[3 * v + 2]);
+      scene.surfaces.push_back(sphere.surface());
+      scene.surfaces[0].scalars = z;
+      scene.color_map = ColorMap{ColorMapName::Viridis, -1.0f, 1.0f, label, true};
+      camera = fit_camera(scene_bounds(scene), static_cast<float>(w) / h);
+      with = render(scene, camera, w, h);
+      RenderOptions no_legend;
+      no_legend.draw_legend = false;
+      without = render(scene, camera, w, h, no_legend);
+    }
+    HeightLegend(const HeightLegend&) = delete;
+    HeightLegend& operator=(const HeightLegend&) = delete;
+  };
+
   static std::unique_ptr<GlContext> context_;
   static std::unique_ptr<Renderer> renderer_;
 };
@@ -275,20 +298,11 @@ TEST_F(RenderSnapshot, PointsShowOnTheSurfaceAndInFreeSpace) {
 }
 
 TEST_F(RenderSnapshot, LegendAddsTextAndBarOnTheRightOnly) {
-  const TestMesh sphere = uv_sphere(1.0f, 32, 64);
-  std::vector<float> z;
-  for (std::size_t v = 0; v < sphere.vertex_count(); ++v) z.push_back(sphere.positions[3 * v + 2]);
-  Scene scene;
-  scene.surfaces.push_back(sphere.surface());
-  scene.surfaces[0].scalars = z;
-  scene.color_map = ColorMap{ColorMapName::Viridis, -1.0f, 1.0f, "height [mm]", true};
   const int w = 320;
   const int h = 240;
-  const Camera camera = fit_camera(scene_bounds(scene), static_cast<float>(w) / h);
-  const Image with = render(scene, camera, w, h);
-  RenderOptions no_legend;
-  no_legend.draw_legend = false;
-  const Image without = render(scene, camera, w, h, no_legend);
+  HeightLegend legend("height [mm]", w, h);
+  const Image& with = legend.with;
+  const Image& without = legend.without;
   keep(with, "legend");
   int changed = 0;
   int dark = 0;
@@ -303,29 +317,19 @@ TEST_F(RenderSnapshot, LegendAddsTextAndBarOnTheRightOnly) {
   EXPECT_GT(changed, 400);
   EXPECT_GT(dark, 100);  // frame and text
 
-  scene.color_map->show_legend = false;
-  EXPECT_EQ(render(scene, camera, w, h).rgba, without.rgba);
+  legend.scene.color_map->show_legend = false;
+  EXPECT_EQ(render(legend.scene, legend.camera, w, h).rgba, without.rgba);
 }
 
 TEST_F(RenderSnapshot, LongLegendLabelWrapsInsteadOfCrossingThePicture) {
   // A label several times wider than a third of the picture is wrapped at its spaces: every
   // legend pixel stays in the right third (plus the margin), and the label takes more than
   // one line above the bar.
-  const TestMesh sphere = uv_sphere(1.0f, 32, 64);
-  std::vector<float> z;
-  for (std::size_t v = 0; v < sphere.vertex_count(); ++v) z.push_back(sphere.positions[3 * v + 2]);
-  Scene scene;
-  scene.surfaces.push_back(sphere.surface());
-  scene.surfaces[0].scalars = z;
-  scene.color_map = ColorMap{ColorMapName::Viridis, -1.0f, 1.0f,
-                             "max principal membrane strain [-] (top 0.5 % clipped)", true};
   const int w = 640;
   const int h = 480;
-  const Camera camera = fit_camera(scene_bounds(scene), static_cast<float>(w) / h);
-  const Image with = render(scene, camera, w, h);
-  RenderOptions no_legend;
-  no_legend.draw_legend = false;
-  const Image without = render(scene, camera, w, h, no_legend);
+  const HeightLegend legend("max principal membrane strain [-] (top 0.5 % clipped)", w, h);
+  const Image& with = legend.with;
+  const Image& without = legend.without;
   keep(with, "legend_long_label");
   int leftmost = w, top = h;
   for (int y = 0; y < h; ++y)

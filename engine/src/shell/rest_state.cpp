@@ -38,6 +38,10 @@ RestState rest_from_state(const SurfaceMesh& mesh, const ShellState& state) {
   return rest_from_state(mesh.faces(), state);
 }
 
+double rest_area(const ElementRest& e) {
+  return 0.5 * (e.X[1] - e.X[0]).cross(e.X[2] - e.X[0]).norm();
+}
+
 RestState lerp(const RestState& a, const RestState& b, double s) {
   if (a.elements.size() != b.elements.size())
     throw InvalidArgument("lerp of rest states: " + std::to_string(a.elements.size()) + " vs " +

@@ -34,8 +34,7 @@ double AreaBarrier::add_energy_gradient_hessian(const ShellState& s, int d, Eige
   double energy = 0.0;
   for (std::size_t f = 0; f < problem_.faces->size(); ++f) {
     const FaceIndices& face = (*problem_.faces)[f];
-    const auto& X = problem_.rest->elements[f].X;
-    const double A0 = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    const double A0 = rest_area(problem_.rest->elements[f]);
     if (!(A0 > 0.0)) continue;
     const std::array<Vec3, 3> x = {s.x[face[0]], s.x[face[1]], s.x[face[2]]};
     const Vec3 n = (x[1] - x[0]).cross(x[2] - x[0]);

@@ -129,8 +129,7 @@ ContactTerm::ContactTerm(const ShellProblem& problem, const std::vector<ContactS
       if (!f.valid() || f.index() >= faces.size())
         throw InvalidArgument("contact: surface " + std::to_string(s) + " names face " +
                               std::to_string(f.value) + " of " + std::to_string(faces.size()));
-      const auto& X = problem.rest->elements[f.index()].X;
-      const double a = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+      const double a = rest_area(problem.rest->elements[f.index()]);
       for (std::int32_t n : faces[f.index()]) {
         if (n < 0 || static_cast<std::size_t>(n) >= problem.num_nodes)
           throw InvalidArgument("contact: face " + std::to_string(f.value) + " uses node " +

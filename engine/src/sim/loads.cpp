@@ -12,8 +12,6 @@ Eigen::Matrix3d skew(const Vec3& v) {
   return m;
 }
 
-double rest_area(const ElementRest& e) { return 0.5 * (e.X[1] - e.X[0]).cross(e.X[2] - e.X[0]).norm(); }
-
 }  // namespace
 
 bool Loads::empty() const {

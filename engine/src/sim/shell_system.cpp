@@ -61,10 +61,9 @@ double min_area_ratio(const ShellProblem& p, const ShellState& s) {
   double ratio = std::numeric_limits<double>::infinity();
   for (std::size_t f = 0; f < p.faces->size(); ++f) {
     const FaceIndices& face = (*p.faces)[f];
-    const auto& X = p.rest->elements[f].X;
-    const double rest = (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    const double rest = rest_area(p.rest->elements[f]);
     const Vec3& a = s.x[face[0]];
-    const double now = (s.x[face[1]] - a).cross(s.x[face[2]] - a).norm();
+    const double now = 0.5 * (s.x[face[1]] - a).cross(s.x[face[2]] - a).norm();
     if (rest > 0.0) ratio = std::min(ratio, now / rest);
   }
   return ratio;
@@ -75,9 +74,8 @@ Eigen::VectorXd lumped_mass(const ShellSystem& sys) {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sys.num_dofs()));
   const auto& faces = *sys.problem.faces;
   for (std::size_t e = 0; e < faces.size(); ++e) {
-    const auto& X = sys.problem.rest->elements[e].X;
     const ShellMaterial& mat = (*sys.problem.materials)[(*sys.problem.face_material)[e]];
-    const double area = 0.5 * (X[1] - X[0]).cross(X[2] - X[0]).norm();
+    const double area = rest_area(sys.problem.rest->elements[e]);
     const double mt = mat.density * mat.thickness * area / 3.0;
     // Rotary inertia of a plate slice (t^2/12), floored by an in-plane term (A/12) so the
     // drilling rotation is not nearly massless; it only shapes the transient.

@@ -52,6 +52,9 @@ RestState rest_from_state(const std::vector<FaceIndices>& faces, const ShellStat
 /// number of elements (throws InvalidArgument otherwise). Cost O(F).
 RestState lerp(const RestState& a, const RestState& b, double s);
 
+/// Rest area of one element (from its rest corners), mm^2.
+double rest_area(const ElementRest& e);
+
 /// Local frame of a triangle: columns are e1 (along corner 0 -> 1), e2 = e3 x e1 (in plane),
 /// e3 (unit normal, right-handed with the corner order). Non-finite for a degenerate triangle.
 Eigen::Matrix3d element_frame(const Vec3& p0, const Vec3& p1, const Vec3& p2);
