@@ -14,6 +14,7 @@
 #include "gui_command.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
@@ -74,6 +75,9 @@ int run_info(const std::string& mesh_file, double weld_tolerance) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // OpenBLAS 0.3.21 does not know the newest CPUs and falls back to slow generic kernels;
+  // this restarts once with better ones where the CPU has them (why: blas_kernels.hpp).
+  sutura::engine::restart_with_better_blas_kernels(argv);
   CLI::App app{"Sutura: thin-shell surgical planning for congenital heart defect repair"};
   app.set_version_flag("--version", std::string("sutura ") + SUTURA_VERSION);
   app.require_subcommand(1);

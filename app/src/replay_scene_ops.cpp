@@ -4,6 +4,7 @@
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
+#include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
 namespace sutura::app::detail {
@@ -28,6 +29,7 @@ json Run::report(const std::string& status, const std::string& error, double tot
   json objects = json::object();
   for (const auto& o : workspace.objects()) objects[o.name] = object_summary(o);
   json r = {{"sutura_version", SUTURA_VERSION},
+            {"blas", engine::blas_kernels_in_use()},
             {"session", session.file.generic_string()},
             {"description", session.description},
             {"status", status},

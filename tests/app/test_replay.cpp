@@ -7,6 +7,7 @@
 
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/render/image.hpp"
@@ -38,10 +39,11 @@ sutura::render::Image read_png(const fs::path& p) {
 // The inflated aortic segment: a quick session exercising snapshots, fields and exports.
 const fs::path kDefaultSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "inflation.jsonl";
 
-// Runs the sutura executable; returns its exit status and captures stderr.
-int run_sutura(const std::string& args, std::string* err_out) {
+// Runs the sutura executable (after `env`, e.g. "env VAR=value "); returns its exit status and
+// captures stderr.
+int run_sutura(const std::string& args, std::string* err_out, const std::string& env = "") {
   fs::path err = fs::temp_directory_path() / ("sutura_stderr_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(SUTURA_EXE) + " " + args + " 2> " + err.string();
+  const std::string cmd = env + std::string(SUTURA_EXE) + " " + args + " 2> " + err.string();
   const int status = std::system(cmd.c_str());
   if (err_out) *err_out = read_text(err);
   fs::remove(err);
@@ -160,6 +162,30 @@ TEST(SuturaCli, ReplayDefaultSessionEndToEnd) {
   EXPECT_TRUE(fs::exists(out / "meshes" / "aorta.obj"));
   EXPECT_EQ(nlohmann::json::parse(read_text(out / "report.json"))["status"], "ok");
   fs::remove_all(out);
+}
+
+// OpenBLAS 0.3.21 falls back to generic kernels on CPUs newer than itself; sutura restarts
+// itself with the kernels the CPU supports (blas_kernels.hpp), unless the user chose them.
+TEST(SuturaCli, RunsWithTheBlasKernelsTheCpuSupports) {
+  const auto blas_of_replay = [](const std::string& env) {
+    fs::path out = fresh_dir("blas");
+    std::string err;
+    EXPECT_EQ(run_sutura("replay " + kDefaultSession.string() + " -q --out " + out.string(), &err,
+                         env),
+              0)
+        << err;
+    const auto report = nlohmann::json::parse(read_text(out / "report.json"));
+    fs::remove_all(out);
+    return report["blas"].get<std::string>();
+  };
+  // This test process loaded OpenBLAS without the restart, so it sees OpenBLAS's own choice.
+  const char* better = sutura::engine::better_blas_coretype();
+  const std::string expected = better != nullptr ? std::string("OpenBLAS ") + better
+                                                 : sutura::engine::blas_kernels_in_use();
+  EXPECT_EQ(blas_of_replay(""), expected);
+  if (expected.rfind("OpenBLAS", 0) == 0) {
+    EXPECT_EQ(blas_of_replay("env OPENBLAS_CORETYPE=Prescott "), "OpenBLAS Prescott");
+  }
 }
 
 TEST(SuturaCli, BadSessionExitsNonZeroWithLineNumber) {

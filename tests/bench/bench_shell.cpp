@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
@@ -201,4 +202,13 @@ BENCHMARK(BM_NewtonIteration)
 BENCHMARK(BM_Gradient)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BackSubstitution)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DynamicsStep)->Arg(6)->Arg(4)->Arg(3)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // The same OpenBLAS kernels as the sutura program uses (why: blas_kernels.hpp).
+  sutura::engine::restart_with_better_blas_kernels(argv);
+  benchmark::AddCustomContext("blas", sutura::engine::blas_kernels_in_use());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
