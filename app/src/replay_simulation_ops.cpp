@@ -153,7 +153,7 @@ json Run::execute(const SolveOp& op) {
   for (const auto& h : r.history)
     history.push_back({{"lambda", h.lambda}, {"iteration", h.iteration},
                        {"residual", h.residual}, {"energy", h.energy},
-                       {"step_length", h.step_length}});
+                       {"potential", h.potential}, {"step_length", h.step_length}});
   for (SceneObject* o : objs) {
     if (r.converged && op.load_factor >= 1.0) commit_pending_loads(*o);
     else o->sim.pending_factor = r.lambda_reached;

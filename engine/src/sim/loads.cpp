@@ -1,5 +1,7 @@
 #include "sutura/engine/sim/loads.hpp"
 
+#include <Eigen/Geometry>
+
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -83,6 +85,42 @@ void external_forces(const ShellProblem& p, const ShellState& s, const Loads& lo
         }
     }
   }
+}
+
+double load_work(const ShellProblem& p, const ShellState& from, const ShellState& to,
+                 const Loads& loads, double lambda) {
+  if (from.x.size() != p.num_nodes || to.x.size() != p.num_nodes)
+    throw InvalidArgument("load_work: the states do not match the problem's node count");
+  double work = 0.0;
+  for (const auto& l : loads.nodal) {
+    if (l.node >= p.num_nodes)
+      throw InvalidArgument("load on node " + std::to_string(l.node) + " out of range");
+    work += l.force.dot(to.x[l.node] - from.x[l.node]);
+    if (!l.moment.isZero()) {
+      const Eigen::AngleAxisd turn(to.D[l.node] * from.D[l.node].inverse());
+      work += l.moment.dot(turn.angle() * turn.axis());
+    }
+  }
+  const auto& faces = *p.faces;
+  if (!loads.body_force_per_area.isZero()) {
+    for (std::size_t e = 0; e < faces.size(); ++e) {
+      const Vec3 share = rest_area(p.rest->elements[e]) / 3.0 * loads.body_force_per_area;
+      for (int k = 0; k < 3; ++k) work += share.dot(to.x[faces[e][k]] - from.x[faces[e][k]]);
+    }
+  }
+  for (const auto& pl : loads.pressures) {
+    const std::size_t count = pl.faces.empty() ? faces.size() : pl.faces.size();
+    // The volume change face by face (a difference of two signed tetrahedron volumes against
+    // the origin); summing the differences keeps the round-off of two large volumes out.
+    double dv = 0.0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto& fc = faces[pl.faces.empty() ? i : pl.faces[i].index()];
+      dv += to.x[fc[0]].dot(to.x[fc[1]].cross(to.x[fc[2]])) -
+            from.x[fc[0]].dot(from.x[fc[1]].cross(from.x[fc[2]]));
+    }
+    work += pl.pressure * dv / 6.0;
+  }
+  return lambda * work;
 }
 
 }  // namespace sutura::engine

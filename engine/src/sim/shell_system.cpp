@@ -57,6 +57,13 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
   return ev;
 }
 
+double external_work(const ShellSystem& sys, const ShellState& from, const ShellState& to,
+                     double lambda) {
+  double work = load_work(sys.problem, from, to, sys.loads, lambda);
+  if (!sys.fixed_loads.empty()) work += load_work(sys.problem, from, to, sys.fixed_loads, 1.0);
+  return work;
+}
+
 double min_area_ratio(const ShellProblem& p, const ShellState& s) {
   double ratio = std::numeric_limits<double>::infinity();
   for (std::size_t f = 0; f < p.faces->size(); ++f) {

@@ -115,3 +115,51 @@ TEST(Loads, PressureResultantAndLoadStiffnessMatchFiniteDifferences) {
   const Eigen::MatrixXd expected = -0.5 * (J + J.transpose());
   EXPECT_LT((Eigen::MatrixXd(Ks) - expected).norm(), 1e-7 * expected.norm());
 }
+
+// The pressure work is the potential of the pressure forces wherever a vertex's faces are all
+// pressurised: d W(s0 -> s0 + a v) / da = f_ext(s0 + a v) . v for a move v of the centre vertex
+// of the patch (its one-ring is the whole patch), at any a, not only to first order.
+TEST(Loads, PressureWorkIsThePotentialOfThePressureForcesAtInteriorVertices) {
+  Patch p = make_patch();
+  Loads l;
+  l.pressures.push_back({{}, 0.7});
+  const Vec3 v(0.3, -0.2, 0.9);
+  const auto moved = [&](double a) {
+    ShellState s = p.state;
+    s.x[4] += a * v;
+    return s;
+  };
+  for (const double a : {0.0, 0.4, 1.3}) {
+    const double h = 1e-5;
+    const double dw = (load_work(p.problem(), p.state, moved(a + h), l, 2.0) -
+                       load_work(p.problem(), p.state, moved(a - h), l, 2.0)) /
+                      (2 * h);
+    Eigen::VectorXd f;
+    external_forces(p.problem(), moved(a), l, 2.0, 3, f, nullptr);
+    const double expected = f.segment<3>(4 * 3).dot(v);
+    EXPECT_NEAR(dw, expected, 1e-8 * std::abs(expected)) << "a = " << a;
+  }
+  // No move, no work; the work of a move and of its reverse cancel.
+  EXPECT_EQ(load_work(p.problem(), p.state, p.state, l, 1.0), 0.0);
+  EXPECT_NEAR(load_work(p.problem(), p.state, moved(0.5), l, 1.0),
+              -load_work(p.problem(), moved(0.5), p.state, l, 1.0), 1e-15);
+}
+
+TEST(Loads, DeadLoadWorkIsForceTimesDisplacementAndMomentTimesRotation) {
+  Patch p = make_patch();
+  Loads l;
+  l.nodal.push_back({2, Vec3(1.0, -2.0, 0.5), Vec3(0.0, 0.0, 3.0)});
+  l.body_force_per_area = Vec3(0.0, 0.0, -0.25);
+  ShellState to = p.state;
+  const Vec3 shift(0.1, 0.2, -0.3);
+  for (auto& x : to.x) x += shift;  // a rigid translation of everything
+  to.D[2] = Quat(Eigen::AngleAxisd(0.6, Vec3(0.0, 0.6, 0.8)));
+  double area = 0.0;
+  for (const auto& e : p.rest.elements) area += rest_area(e);
+  const double expected = 1.5 * (Vec3(1.0, -2.0, 0.5).dot(shift) + 3.0 * 0.8 * 0.6 +
+                                 area * Vec3(0.0, 0.0, -0.25).dot(shift));
+  EXPECT_NEAR(load_work(p.problem(), p.state, to, l, 1.5), expected, 1e-12);
+  ShellState wrong = p.state;
+  wrong.x.pop_back();
+  EXPECT_THROW(load_work(p.problem(), p.state, wrong, l, 1.0), InvalidArgument);
+}

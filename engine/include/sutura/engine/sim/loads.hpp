@@ -48,4 +48,17 @@ std::vector<NodalLoad> lump_line_load(const std::vector<Vec3>& positions,
 void external_forces(const ShellProblem& p, const ShellState& s, const Loads& loads,
                      double lambda, int dofs_per_node, Eigen::VectorXd& f, Triplets* K);
 
+/// Work done by the loads at load factor lambda (N*mm) when the state moves from `from` to `to`
+/// (same mesh): dead nodal forces and body forces times the displacement, nodal moments times
+/// the rotation vector between the triads (exact for a rotation about a fixed axis), follower
+/// pressure times the change of the volume V = sum x0 . (x1 x x2) / 6 of its faces.
+/// Why the volume: the pressure forces of external_forces (p A n / 3 per corner) are exactly
+/// p dV/dx at every vertex whose faces are all pressurised (a closed surface, or a vessel with
+/// its open ends held), so there the internal energy minus this work is the total potential
+/// energy that a static equilibrium minimises, and line searches can use it as their merit.
+/// At a free pressurised rim it is the volume work, a close but not exact potential.
+/// Cost O(F).
+double load_work(const ShellProblem& p, const ShellState& from, const ShellState& to,
+                 const Loads& loads, double lambda);
+
 }  // namespace sutura::engine

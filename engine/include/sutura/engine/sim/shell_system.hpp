@@ -59,6 +59,12 @@ Evaluation evaluate(const ShellSystem& sys, const DofMap& map, const ShellState&
                     bool with_tangent, bool load_stiffness = true,
                     TangentAssembler* assembler = nullptr);
 
+/// Work of the system's loads (at load factor lambda) and fixed loads (at full value) when the
+/// state moves from `from` to `to` (load_work). With it, internal energy minus work is the total
+/// potential energy whose decrease a line search demands. Cost O(F).
+double external_work(const ShellSystem& sys, const ShellState& from, const ShellState& to,
+                     double lambda);
+
 /// Smallest ratio of a triangle's current area to its rest area (from the per-element rest
 /// corners), over all faces; +inf without faces. Solvers use it to reject states in which an
 /// element has collapsed: the flat corotational elements do not resist being squashed through

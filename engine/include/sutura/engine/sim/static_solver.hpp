@@ -20,8 +20,9 @@ struct StaticSolverParams {
   double tolerance = 1e-8;       ///< converged when |r| <= tolerance * max(|f_ext|, |r_0|), relative
   int max_iterations = 30;       ///< Newton iterations per load step, >= 1
   /// Safeguard the Newton step: a step that raises |r| more than 1000-fold is refined by
-  /// secant steps on du.r; with shift_indefinite and no loads (energy minimisation) the step
-  /// is backtracked until the Armijo condition on the strain energy holds (up to 12 times).
+  /// secant steps on du.r; with shift_indefinite (energy minimisation) the step is backtracked
+  /// until the Armijo condition on the total potential energy (strain energy minus the work
+  /// of the loads, external_work) holds (up to 12 times).
   bool line_search = true;
   int max_step_cuts = 6;         ///< a failed load step is retried with half the increment this often
   double energy_blowup = 1e12;   ///< energy above this factor times the largest energy seen so far = divergence
@@ -59,6 +60,10 @@ struct NewtonIteration {
   double residual = 0.0;  ///< |r| over free DOFs
   double energy = 0.0;    ///< internal strain energy, N*mm
   double step_length = 1.0;
+  /// N*mm: total potential energy, the strain energy minus the work the loads did since the
+  /// start of this load step (external_work); what a line search with shift_indefinite
+  /// decreases from iteration to iteration.
+  double potential = 0.0;
 };
 
 struct StaticResult {
