@@ -53,6 +53,11 @@ struct RelaxationParams {
   /// carry the shape along the path; the last increment and the settling solve use
   /// statics.tolerance.
   double increment_tolerance = 1e-6;
+  /// Static only: start each increment (from the third on) at the state extrapolated from the
+  /// last two converged ones (secant predictor of path following), when that has the lower total
+  /// potential energy at the new rest shape and collapses no triangle; otherwise at the last
+  /// converged state. Costs two energy evaluations per increment.
+  bool predictor = true;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
 };
