@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "so3.hpp"
+
 namespace sutura::engine::dshell {
 
 namespace {
@@ -10,11 +12,7 @@ namespace {
 using Mat3x12 = Eigen::Matrix<double, 3, 12>;
 using Row12 = Eigen::Matrix<double, 1, 12>;
 
-Eigen::Matrix3d skew(const Vec3& v) {
-  Eigen::Matrix3d s;
-  s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return s;
-}
+using so3::skew;
 
 // Jacobian of u = -|e| N / |N|^2 (the gradient of theta w.r.t. an apex), given dN/dx (3x12)
 // and d|e|/dx (1x12): d(N/|N|^2) = (I - 2 n n^T) dN / |N|^2.

@@ -1,5 +1,6 @@
 #pragma once
-// Rotation-group helpers for the 6-DOF shells (private to engine/src/shell).
+// Rotation-group helpers for the 6-DOF shells (private to the engine; also the skew matrix
+// that the loads, the collapse barrier and the hinge bending share).
 //
 // Conventions: rotation vectors theta (rad), R = exp([theta]x). Left (spatial) perturbations:
 // exp(theta + dtheta) = exp([J_l(theta) dtheta]x) exp(theta), hence for R <- exp([phi]x) R the

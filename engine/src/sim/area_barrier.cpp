@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../shell/so3.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -11,12 +12,7 @@ namespace {
 using Mat3 = Eigen::Matrix3d;
 using Vec9 = Eigen::Matrix<double, 9, 1>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
-
-Mat3 skew(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
+using so3::skew;
 
 }  // namespace
 

@@ -2,19 +2,12 @@
 
 #include <Eigen/Geometry>
 
+#include "../shell/so3.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
 
-namespace {
-
-Eigen::Matrix3d skew(const Vec3& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
-}  // namespace
+using so3::skew;
 
 bool Loads::empty() const {
   return nodal.empty() && pressures.empty() && body_force_per_area.isZero();
