@@ -233,12 +233,26 @@ StaticResult linear_solve(const ShellSystem& sys, const DofMap& map, ShellState&
 
 }  // namespace
 
-StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params) {
+LinearSolver& SolverWorkspace::solver(LinearSolverKind kind, const PcgParams& pcg) {
+  const bool same_pcg =
+      pcg.tolerance == pcg_.tolerance && pcg.max_iterations == pcg_.max_iterations;
+  if (!solver_ || kind != kind_ || (kind == LinearSolverKind::Pcg && !same_pcg)) {
+    solver_ = make_linear_solver(kind, pcg);
+    kind_ = kind;
+    pcg_ = pcg;
+  }
+  return *solver_;
+}
+
+StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params,
+                          SolverWorkspace* workspace) {
   check(params);
   const DofMap map(sys);
-  auto solver = make_linear_solver(params.linear_solver, params.pcg);
-  TangentAssembler assembler;
-  if (params.linear) return linear_solve(sys, map, state, params, *solver, assembler);
+  SolverWorkspace local;
+  SolverWorkspace& ws = workspace != nullptr ? *workspace : local;
+  LinearSolver& solver = ws.solver(params.linear_solver, params.pcg);
+  TangentAssembler& assembler = ws.assembler();
+  if (params.linear) return linear_solve(sys, map, state, params, solver, assembler);
   StaticResult result;
   ShellState good = state;
   // t runs from 0 to 1; the load factor is lambda_start + t * (lambda_end - lambda_start).
@@ -268,7 +282,7 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
     const double t = std::min(1.0, t_done + dt);
     const double lambda = lambda_at(t);
     const std::string why =
-        newton(sys, map, state, lambda, params, *solver, energy_scale, result, assembler);
+        newton(sys, map, state, lambda, params, solver, energy_scale, result, assembler);
     if (why.empty()) {
       t_done = t;
       good = state;

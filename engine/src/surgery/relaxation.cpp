@@ -122,10 +122,10 @@ double reaction_norm(const ShellSystem& sys, const ShellState& s) {
 }
 
 bool settle_static(const ShellSystem& sys, ShellState& state, const RelaxationParams& params,
-                   const Scales& scales, RelaxationResult& result) {
+                   const Scales& scales, RelaxationResult& result, SolverWorkspace& workspace) {
   StaticSolverParams sp = increment_params(params, scales);
   sp.force_reference = std::max(sp.force_reference, reaction_norm(sys, state));
-  const StaticResult r = solve_static(sys, state, sp);
+  const StaticResult r = solve_static(sys, state, sp, &workspace);
   result.newton_iterations += r.iterations;
   result.residual = r.residual;
   result.energy = r.energy;
@@ -166,7 +166,8 @@ bool better_start(const ShellSystem& sys, const ShellState& now, const ShellStat
 
 RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const RestState& y0,
                               const RestState& x0, ShellState& state, const RelaxationParams& p,
-                              const RelaxationHook& hook, const Scales& scales) {
+                              const RelaxationHook& hook, const Scales& scales,
+                              SolverWorkspace& workspace) {
   RelaxationResult result;
   double s = p.s_start;
   const double ds_planned = (p.s_end - p.s_start) / p.steps;
@@ -196,7 +197,7 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     }
     StaticSolverParams sp = increment_params(p, scales);
     if (s_next < p.s_end) sp.tolerance = std::max(sp.tolerance, p.increment_tolerance);
-    const StaticResult r = solve_static(sys, state, sp);
+    const StaticResult r = solve_static(sys, state, sp, &workspace);
     result.newton_iterations += r.iterations;
     if (!r.converged) {
       state = good;
@@ -291,9 +292,12 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
                        const RelaxationHook& hook) {
   check(sys, rest, y0, x0, params);
   const Scales scales = target_scales(sys, x0, state);
+  // One pattern and one ordering for every increment and the settling: the structure of the
+  // system does not change during a relaxation, only its rest shape.
+  SolverWorkspace workspace;
   RelaxationResult result =
       params.solver == RelaxationSolver::Static
-          ? relax_static(sys, rest, y0, x0, state, params, hook, scales)
+          ? relax_static(sys, rest, y0, x0, state, params, hook, scales, workspace)
           : relax_dynamic(sys, rest, y0, x0, state, params, hook, scales);
   if (!result.ok || result.cancelled || result.s_reached < 1.0 || !params.settle) return result;
   // Settle to a tight static equilibrium, measured against the support reactions (a
@@ -301,7 +305,7 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
   if (reaction_norm(sys, state) > 0.0) {
     const ShellState good = state;
     const int iterations_before_settle = result.newton_iterations;
-    if (!settle_static(sys, state, params, scales, result)) {
+    if (!settle_static(sys, state, params, scales, result, workspace)) {
       state = good;
       result.ok = false;
       return result;

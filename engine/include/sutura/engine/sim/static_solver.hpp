@@ -7,6 +7,7 @@
 
 #include "sutura/engine/sim/linear_solver.hpp"
 #include "sutura/engine/sim/shell_system.hpp"
+#include "sutura/engine/sim/tangent_assembler.hpp"
 
 namespace sutura::engine {
 
@@ -76,8 +77,30 @@ struct StaticResult {
   std::string message;  ///< empty on success; otherwise what went wrong and what was rolled back
 };
 
+/// What consecutive solves of systems with the same structure can share: the tangent
+/// assembler's sparsity pattern and the linear solver with its symbolic factorisation
+/// (ordering). Why: a static relaxation runs one solve per increment of s; rebuilding both
+/// every time cost about 0.75 s per solve at 20k elements (the pattern 0.65 s, the ordering
+/// 0.1 s) against about 0.45 s for one Newton iteration. Both caches re-check the structure on
+/// every use, so a workspace may be passed to any system; results are bit-identical with and
+/// without one. Not thread-safe: one solve at a time.
+class SolverWorkspace {
+ public:
+  /// The solver of this kind, made on first use and kept while the kind and PCG settings stay.
+  LinearSolver& solver(LinearSolverKind kind, const PcgParams& pcg);
+  TangentAssembler& assembler() { return assembler_; }
+
+ private:
+  TangentAssembler assembler_;
+  std::unique_ptr<LinearSolver> solver_;
+  LinearSolverKind kind_ = LinearSolverKind::Cholmod;
+  PcgParams pcg_;
+};
+
 /// Solves sys for equilibrium starting from `state` (modified in place; on failure it holds the
-/// last converged load step). Throws InvalidArgument for invalid parameters.
-StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params);
+/// last converged load step). `workspace` (optional) carries the pattern and the ordering from
+/// one call to the next. Throws InvalidArgument for invalid parameters.
+StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params,
+                          SolverWorkspace* workspace = nullptr);
 
 }  // namespace sutura::engine
