@@ -3,10 +3,12 @@
 //
 // Why: the shell models emit a fixed list of triplets for a given topology (6.5 million at
 // 20k elements); Eigen's setFromTriplets sorts them on every call, which costs more than
-// computing them. The first call records, for every triplet, its slot in the compressed
-// matrix; later calls with the same triplet structure only scatter values, in triplet order
-// (deterministic). The structure is re-checked on every call (one linear pass over the
-// row/column pairs) and rebuilt when it changed.
+// computing them. The first call records, for every entry of the compressed matrix, which
+// triplets add up to it; later calls with the same triplet structure only gather values.
+// Each entry is summed by one thread, in triplet order, so the result is deterministic and
+// independent of the thread count (and bit-identical to a serial scatter in triplet order).
+// The structure is re-checked on every call (one parallel pass over the row/column pairs)
+// and rebuilt when it changed.
 #include <cstdint>
 #include <vector>
 
@@ -31,7 +33,11 @@ class TangentAssembler {
 
   Triplets buffer_;
   std::vector<std::uint64_t> keys_;  // (row << 32 | col) of each triplet, full numbering
-  std::vector<std::int64_t> slot_;   // index into the value array, -1 when dropped
+  // Entry e of the compressed matrix is the sum of the values of the triplets
+  // sources_[first_[e]], ..., sources_[first_[e + 1] - 1], in increasing triplet order
+  // (triplets on a fixed row or column are in none).
+  std::vector<std::int64_t> first_;
+  std::vector<std::uint32_t> sources_;
   std::vector<int> full_to_free_;
   Eigen::SparseMatrix<double> pattern_;
 };
