@@ -2,6 +2,10 @@
 // Static equilibrium: Newton-Raphson with load stepping and a backtracking line search on the
 // residual norm. Divergence (NaN/inf, energy blow-up, no convergence) rolls the state back to
 // the last converged load step, retries with halved load increments, and is reported.
+// Where the tangent is not positive definite (Cholmod): with shift_indefinite a
+// Levenberg-Marquardt shift; otherwise, under follower pressure, first the tangent without the
+// load stiffness (a descent step of the potential, see static_solver.cpp), then LDL^T on the
+// true tangent.
 #include <string>
 #include <vector>
 
@@ -89,9 +93,12 @@ class SolverWorkspace {
   /// The solver of this kind, made on first use and kept while the kind and PCG settings stay.
   LinearSolver& solver(LinearSolverKind kind, const PcgParams& pcg);
   TangentAssembler& assembler() { return assembler_; }
+  /// For the tangent without the load stiffness (a triplet structure of its own).
+  TangentAssembler& internal_assembler() { return internal_assembler_; }
 
  private:
   TangentAssembler assembler_;
+  TangentAssembler internal_assembler_;
   std::unique_ptr<LinearSolver> solver_;
   LinearSolverKind kind_ = LinearSolverKind::Cholmod;
   PcgParams pcg_;
