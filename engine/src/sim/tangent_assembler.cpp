@@ -23,35 +23,66 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
   if (K.size() > std::numeric_limits<std::uint32_t>::max())
     throw InvalidArgument("tangent assembly: more than 2^32 triplets");
   full_to_free_ = full_to_free;
-  keys_.resize(K.size());
-  std::vector<Eigen::Triplet<double>> kept;
-  kept.reserve(K.size());
-  for (std::size_t i = 0; i < K.size(); ++i) {
+  const std::size_t T = K.size();
+  const auto cols = static_cast<std::size_t>(num_free);
+  keys_.resize(T);
+  // The kept triplets bucketed by column (a counting sort: triplet order within a column),
+  // each as (row << 32 | triplet index), then every column's bucket sorted: by row, and
+  // within a row by triplet index. That is the value layout of the compressed matrix and,
+  // for every entry, its triplets in triplet order. Why not setFromTriplets plus a binary
+  // search per triplet: a third of the time at 20k elements (6.5M triplets), and columns
+  // sort independently, in parallel.
+  std::vector<std::int64_t> start(cols + 1, 0);
+  for (std::size_t i = 0; i < T; ++i) {
     keys_[i] = key(K[i]);
     const int r = full_to_free[K[i].row()], c = full_to_free[K[i].col()];
-    if (r >= 0 && c >= 0) kept.emplace_back(r, c, 1.0);
+    if (r >= 0 && c >= 0) ++start[static_cast<std::size_t>(c) + 1];
   }
-  pattern_.resize(num_free, num_free);
-  pattern_.setFromTriplets(kept.begin(), kept.end());
-  pattern_.makeCompressed();
-  const auto* outer = pattern_.outerIndexPtr();
-  const auto* inner = pattern_.innerIndexPtr();
-  // The entry of every kept triplet, then a counting sort by entry (stable: triplet order).
-  std::vector<std::int64_t> entry(K.size(), -1);
-  first_.assign(static_cast<std::size_t>(pattern_.nonZeros()) + 1, 0);
-  for (std::size_t i = 0; i < K.size(); ++i) {
-    const int r = full_to_free[K[i].row()], c = full_to_free[K[i].col()];
-    if (r < 0 || c < 0) continue;
-    const auto* begin = inner + outer[c];
-    const auto* end = inner + outer[c + 1];
-    entry[i] = std::lower_bound(begin, end, r) - inner;  // column-major: inner = row
-    ++first_[static_cast<std::size_t>(entry[i]) + 1];
+  for (std::size_t c = 0; c < cols; ++c) start[c + 1] += start[c];
+  std::vector<std::uint64_t> bucket(static_cast<std::size_t>(start[cols]));
+  {
+    std::vector<std::int64_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < T; ++i) {
+      const int r = full_to_free[K[i].row()], c = full_to_free[K[i].col()];
+      if (r >= 0 && c >= 0)
+        bucket[static_cast<std::size_t>(next[static_cast<std::size_t>(c)]++)] =
+            (static_cast<std::uint64_t>(r) << 32) | i;
+    }
   }
-  for (std::size_t e = 1; e < first_.size(); ++e) first_[e] += first_[e - 1];
-  sources_.resize(static_cast<std::size_t>(first_.back()));
-  std::vector<std::int64_t> next(first_.begin(), first_.end() - 1);
-  for (std::size_t i = 0; i < K.size(); ++i)
-    if (entry[i] >= 0) sources_[static_cast<std::size_t>(next[entry[i]]++)] = static_cast<std::uint32_t>(i);
+  const auto n = static_cast<std::ptrdiff_t>(cols);
+  const bool parallel = T >= kParallelTriplets;
+  std::vector<std::int64_t> entries(cols + 1, 0);  // distinct rows per column, then offsets
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t c = 0; c < n; ++c) {
+    const auto b = bucket.begin() + start[c], e = bucket.begin() + start[c + 1];
+    std::sort(b, e);
+    std::int64_t distinct = 0;
+    for (auto it = b; it != e; ++it)
+      if (it == b || (*it >> 32) != (*(it - 1) >> 32)) ++distinct;
+    entries[static_cast<std::size_t>(c) + 1] = distinct;
+  }
+  for (std::size_t c = 0; c < cols; ++c) entries[c + 1] += entries[c];
+  pattern_ = Eigen::SparseMatrix<double>(num_free, num_free);
+  pattern_.resizeNonZeros(static_cast<Eigen::Index>(entries[cols]));
+  auto* outer = pattern_.outerIndexPtr();
+  auto* inner = pattern_.innerIndexPtr();
+  first_.assign(static_cast<std::size_t>(entries[cols]) + 1, start[cols]);
+  sources_.resize(bucket.size());
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t c = 0; c < n; ++c) {
+    std::int64_t entry = entries[c];
+    outer[c] = static_cast<int>(entry);
+    for (std::int64_t k = start[c]; k < start[c + 1]; ++k) {
+      const auto row = static_cast<std::uint32_t>(bucket[k] >> 32);
+      if (k == start[c] || row != static_cast<std::uint32_t>(bucket[k - 1] >> 32)) {
+        inner[entry] = static_cast<int>(row);
+        first_[static_cast<std::size_t>(entry++)] = k;
+      }
+      sources_[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(bucket[k]);
+    }
+  }
+  outer[n] = static_cast<int>(entries[cols]);
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
 }
 
 void TangentAssembler::assemble(const Triplets& K, const std::vector<int>& full_to_free,
