@@ -95,6 +95,11 @@ class CholmodSolver final : public LinearSolver {
     note_ = "cholmod: matrix not positive definite";
     return false;
   }
+  bool factorize_indefinite(const SpMat& A) override {
+    note_ = "cholmod: matrix not positive definite, used LDL^T";
+    use_fallback_ = true;
+    return fallback_.factorize(A);
+  }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
     if (use_fallback_) return fallback_.solve(b, x);
     const detail::SingleThreadedBlas one_thread;  // why: blas_threads.hpp

@@ -64,6 +64,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
   double step_length = 1.0;
   double first_work = -1.0;
   double lm_shift = 0.0;  // the Levenberg-Marquardt shift of the last iteration (0: none)
+  int internal_steps = 0;  // consecutive steps with the internal-force tangent (below)
   bool collapsed_trial = false;  // a line-search trial was rejected for a collapsed triangle
   double work_done = 0.0;  // by the loads since the start of this load step (external_work)
   for (int it = 0;; ++it) {
@@ -114,17 +115,24 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
       // makes the tangent indefinite through its load stiffness alone, until the hoop stress
       // builds up. The Newton step on it (LDL^T) heads for a saddle first; the step with the
       // tangent of the internal forces, positive definite there, is a descent direction of
-      // the potential and lands close to the equilibrium. Measured on the fine arch's
-      // inflation (80 mmHg in two load steps): 12 -> 9 iterations, 13.2 -> 7.9 s, the same
-      // equilibrium (lumen to 11 digits). Where that tangent is indefinite too (a real
-      // instability), LDL^T on the true tangent as before.
+      // the potential (for a conservative pressure: closed surface or held rims) and lands
+      // close to the equilibrium. Measured on the fine arch's inflation (80 mmHg in two load
+      // steps): 12 -> 9 iterations, 13.2 -> 7.9 s, the same equilibrium (lumen to 11 digits).
+      // Such steps converge only linearly, and near an instability driven by the pressure
+      // itself they would push away from the equilibrium that LDL^T reaches, so after
+      // kInternalSteps of them in a row (or where the internal tangent is indefinite too)
+      // the step is LDL^T on the true tangent, as before.
+      constexpr int kInternalSteps = 3;
       factored = solver.factorize_definite(ev.tangent);
-      if (!factored && has_load_stiffness(sys)) {
+      if (factored) {
+        internal_steps = 0;
+      } else if (has_load_stiffness(sys) && internal_steps < kInternalSteps) {
         const Evaluation internal =
             evaluate(sys, map, state, lambda, true, false, &internal_assembler);
         factored = solver.factorize_definite(internal.tangent);
+        if (factored) ++internal_steps;
       }
-      if (!factored) factored = solver.factorize(ev.tangent);
+      if (!factored) factored = solver.factorize_indefinite(ev.tangent);
     } else {
       factored = solver.factorize(ev.tangent);
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 #include "sutura/engine/errors.hpp"
 
@@ -22,10 +23,13 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
                              Eigen::Index num_free) {
   if (K.size() > std::numeric_limits<std::uint32_t>::max())
     throw InvalidArgument("tangent assembly: more than 2^32 triplets");
-  full_to_free_ = full_to_free;
+  // The structure (keys_, full_to_free_) is recorded last: if anything below throws
+  // (bad_alloc), the next call must not take the half-built map for a valid one.
+  keys_.clear();
+  full_to_free_.clear();
   const std::size_t T = K.size();
   const auto cols = static_cast<std::size_t>(num_free);
-  keys_.resize(T);
+  std::vector<std::uint64_t> keys(T);
   // The kept triplets bucketed by column (a counting sort: triplet order within a column),
   // each as (row << 32 | triplet index), then every column's bucket sorted: by row, and
   // within a row by triplet index. That is the value layout of the compressed matrix and,
@@ -34,7 +38,7 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
   // sort independently, in parallel.
   std::vector<std::int64_t> start(cols + 1, 0);
   for (std::size_t i = 0; i < T; ++i) {
-    keys_[i] = key(K[i]);
+    keys[i] = key(K[i]);
     const int r = full_to_free[K[i].row()], c = full_to_free[K[i].col()];
     if (r >= 0 && c >= 0) ++start[static_cast<std::size_t>(c) + 1];
   }
@@ -62,6 +66,8 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
     entries[static_cast<std::size_t>(c) + 1] = distinct;
   }
   for (std::size_t c = 0; c < cols; ++c) entries[c + 1] += entries[c];
+  if (entries[cols] > std::numeric_limits<int>::max())
+    throw InvalidArgument("tangent assembly: more than 2^31 matrix entries");
   pattern_ = Eigen::SparseMatrix<double>(num_free, num_free);
   pattern_.resizeNonZeros(static_cast<Eigen::Index>(entries[cols]));
   auto* outer = pattern_.outerIndexPtr();
@@ -83,6 +89,8 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
   }
   outer[n] = static_cast<int>(entries[cols]);
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  keys_ = std::move(keys);
+  full_to_free_ = full_to_free;
 }
 
 void TangentAssembler::assemble(const Triplets& K, const std::vector<int>& full_to_free,

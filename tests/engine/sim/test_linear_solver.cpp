@@ -71,6 +71,33 @@ TEST(LinearSolver, CholmodFactorizeDefiniteRefusesIndefiniteMatrixWithoutFallbac
   EXPECT_EQ(s->last_note().find("LDL"), std::string::npos);
 }
 
+TEST(LinearSolver, FactorizeIndefiniteGoesStraightToLdltAndSolves) {
+  // After a failed factorize_definite the caller asks for the indefinite path directly; the
+  // solve must then use the LDL^T factor, not the failed Cholesky one. Then a definite
+  // matrix again: back to Cholesky (no LDL^T note).
+  Eigen::SparseMatrix<double> A = spd(6);
+  A.coeffRef(0, 0) = -3.0;
+  const Eigen::VectorXd x_true = Eigen::VectorXd::LinSpaced(A.rows(), -1.0, 2.0);
+  for (auto kind : {LinearSolverKind::Cholmod, LinearSolverKind::Ldlt}) {
+    auto s = make_linear_solver(kind);
+    if (kind == LinearSolverKind::Cholmod) {
+      ASSERT_FALSE(s->factorize_definite(A));
+    }
+    ASSERT_TRUE(s->factorize_indefinite(A)) << to_string(kind);
+    if (kind == LinearSolverKind::Cholmod) {
+      EXPECT_NE(s->last_note().find("LDL"), std::string::npos);
+    }
+    Eigen::VectorXd x;
+    ASSERT_TRUE(s->solve(A * x_true, x)) << to_string(kind);
+    EXPECT_LT((x - x_true).norm(), 1e-9) << to_string(kind);
+    const Eigen::SparseMatrix<double> B = spd(6);
+    ASSERT_TRUE(s->factorize(B));
+    EXPECT_EQ(s->last_note().find("LDL"), std::string::npos);
+    ASSERT_TRUE(s->solve(B * x_true, x));
+    EXPECT_LT((x - x_true).norm(), 1e-9) << to_string(kind);
+  }
+}
+
 TEST(LinearSolver, ParseNames) {
   EXPECT_EQ(parse_linear_solver("pcg"), LinearSolverKind::Pcg);
   EXPECT_EQ(to_string(parse_linear_solver("cholmod")), "cholmod");

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <utility>
+#include <vector>
 
 #include "sutura/engine/sim/tangent_assembler.hpp"
 
@@ -45,8 +47,8 @@ TEST(TangentAssembler, SumsDuplicatesInTripletOrderAndDropsFixedDofs) {
   int free = 0;
   for (int i = 0; i < n; ++i) full_to_free[i] = (i % 7 == 3) ? -1 : free++;
   TangentAssembler assembler;
-  // Large enough for the parallel paths (threshold 10,000 triplets); called three times with
-  // the same structure (new values) and then with another structure.
+  // Large enough for the parallel paths (threshold 10,000 triplets); called twice with the
+  // same structure (new values: the cached map), then with two other structures (rebuilds).
   const std::pair<std::uint32_t, double> calls[] = {{1u, 1.0}, {1u, 3.0}, {2u, 1.0}, {3u, 1.0}};
   for (const auto& [seed, scale] : calls) {
     Triplets K = random_triplets(n, 40000, seed);
@@ -82,4 +84,26 @@ TEST(TangentAssembler, NoticesAChangeOfTheFixedDofs) {
   Eigen::MatrixXd touched;
   EXPECT_EQ(Eigen::MatrixXd(A), serial_sum(K, all, n, &touched));
   EXPECT_EQ(Eigen::MatrixXd(B), serial_sum(K, some, free, &touched));
+  // Everything fixed: an empty matrix, and back to all free.
+  const std::vector<int> none(n, -1);
+  Eigen::SparseMatrix<double> C;
+  assembler.assemble(K, none, 0, C);
+  EXPECT_EQ(C.rows(), 0);
+  EXPECT_EQ(C.nonZeros(), 0);
+  assembler.assemble(K, all, n, A);
+  EXPECT_EQ(Eigen::MatrixXd(A), serial_sum(K, all, n, &touched));
+}
+
+TEST(TangentAssembler, LeavesEmptyColumnsEmpty) {
+  // Triplets only in columns 1 and 4 of 6: the other columns have no entries.
+  const Triplets K{{0, 1, 1.0}, {5, 1, 2.0}, {0, 1, 0.5}, {3, 4, -1.0}};
+  std::vector<int> all{0, 1, 2, 3, 4, 5};
+  TangentAssembler assembler;
+  Eigen::SparseMatrix<double> A;
+  assembler.assemble(K, all, 6, A);
+  ASSERT_EQ(A.nonZeros(), 3);
+  EXPECT_EQ(A.coeff(0, 1), 1.5);
+  EXPECT_EQ(A.coeff(5, 1), 2.0);
+  EXPECT_EQ(A.coeff(3, 4), -1.0);
+  for (int c : {0, 2, 3, 5}) EXPECT_EQ(A.col(c).nonZeros(), 0) << "column " << c;
 }

@@ -36,6 +36,10 @@ class LinearSolver {
   /// where a fallback factorisation would be thrown away. Solvers that cannot tell (Ldlt,
   /// Pcg) just factorise.
   virtual bool factorize_definite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
+  /// Like factorize, for a matrix the caller already knows not to be positive definite (a
+  /// factorize_definite of it failed): goes straight to the indefinite path instead of
+  /// repeating the failed Cholesky attempt. Solvers without one just factorise.
+  virtual bool factorize_indefinite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
   /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// What happened in the last call, e.g. "cholmod fell back to LDL^T (not positive definite)".
