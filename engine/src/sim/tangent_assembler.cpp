@@ -23,10 +23,11 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
                              Eigen::Index num_free) {
   if (K.size() > std::numeric_limits<std::uint32_t>::max())
     throw InvalidArgument("tangent assembly: more than 2^32 triplets");
-  // The structure (keys_, full_to_free_) is recorded last: if anything below throws
-  // (bad_alloc), the next call must not take the half-built map for a valid one.
+  // The structure (keys_, full_to_free_, num_free_) is recorded last: if anything below
+  // throws (bad_alloc), the next call must not take the half-built map for a valid one.
   keys_.clear();
   full_to_free_.clear();
+  num_free_ = -1;
   const std::size_t T = K.size();
   const auto cols = static_cast<std::size_t>(num_free);
   std::vector<std::uint64_t> keys(T);
@@ -68,10 +69,10 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
   for (std::size_t c = 0; c < cols; ++c) entries[c + 1] += entries[c];
   if (entries[cols] > std::numeric_limits<int>::max())
     throw InvalidArgument("tangent assembly: more than 2^31 matrix entries");
-  pattern_ = Eigen::SparseMatrix<double>(num_free, num_free);
-  pattern_.resizeNonZeros(static_cast<Eigen::Index>(entries[cols]));
-  auto* outer = pattern_.outerIndexPtr();
-  auto* inner = pattern_.innerIndexPtr();
+  outer_.resize(cols + 1);
+  inner_.resize(static_cast<std::size_t>(entries[cols]));
+  int* outer = outer_.data();
+  int* inner = inner_.data();
   first_.assign(static_cast<std::size_t>(entries[cols]) + 1, start[cols]);
   sources_.resize(bucket.size());
 #pragma omp parallel for schedule(static) if (parallel)
@@ -88,7 +89,7 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
     }
   }
   outer[n] = static_cast<int>(entries[cols]);
-  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  num_free_ = num_free;
   keys_ = std::move(keys);
   full_to_free_ = full_to_free;
 }
@@ -96,7 +97,7 @@ void TangentAssembler::build(const Triplets& K, const std::vector<int>& full_to_
 void TangentAssembler::assemble(const Triplets& K, const std::vector<int>& full_to_free,
                                 Eigen::Index num_free, Eigen::SparseMatrix<double>& out) {
   bool same = K.size() == keys_.size() && full_to_free == full_to_free_ &&
-              pattern_.rows() == num_free;
+              num_free_ == num_free;
   const auto n = static_cast<std::ptrdiff_t>(K.size());
   const bool parallel = K.size() >= kParallelTriplets;
   if (same) {
@@ -106,9 +107,13 @@ void TangentAssembler::assemble(const Triplets& K, const std::vector<int>& full_
     same = changed == 0;
   }
   if (!same) build(K, full_to_free, num_free);
-  out = pattern_;
+  // The structure is copied, the values are all written below (no copy, no zero fill).
+  const auto entries = static_cast<std::ptrdiff_t>(inner_.size());
+  out.resize(num_free, num_free);
+  out.resizeNonZeros(static_cast<Eigen::Index>(entries));
+  std::copy(outer_.begin(), outer_.end(), out.outerIndexPtr());
+  std::copy(inner_.begin(), inner_.end(), out.innerIndexPtr());
   double* values = out.valuePtr();
-  const auto entries = static_cast<std::ptrdiff_t>(out.nonZeros());
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::ptrdiff_t e = 0; e < entries; ++e) {
     double sum = 0.0;

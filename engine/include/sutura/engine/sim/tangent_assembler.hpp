@@ -39,7 +39,9 @@ class TangentAssembler {
   std::vector<std::int64_t> first_;
   std::vector<std::uint32_t> sources_;
   std::vector<int> full_to_free_;
-  Eigen::SparseMatrix<double> pattern_;
+  // The compressed column-major pattern of the free x free matrix (outer/inner indices).
+  Eigen::Index num_free_ = -1;
+  std::vector<int> outer_, inner_;
 };
 
 }  // namespace sutura::engine
