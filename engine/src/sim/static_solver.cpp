@@ -98,6 +98,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
       if (factored) {
         lm_shift = 0.0;
       } else {
+        ++result.indefinite_iterations;
         const Eigen::VectorXd diag = ev.tangent.diagonal().cwiseAbs().cwiseMax(1e-300);
         for (double mu = lm_shift > 0.0 ? std::max(1e-4, 0.1 * lm_shift) : 1e-4; mu <= 1e4;
              mu *= 10.0) {
@@ -124,6 +125,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
       // the step is LDL^T on the true tangent, as before.
       constexpr int kInternalSteps = 3;
       factored = solver.factorize_definite(ev.tangent);
+      if (!factored) ++result.indefinite_iterations;
       if (factored) {
         internal_steps = 0;
       } else if (has_load_stiffness(sys) && internal_steps < kInternalSteps) {

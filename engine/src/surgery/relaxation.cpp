@@ -127,6 +127,7 @@ bool settle_static(const ShellSystem& sys, ShellState& state, const RelaxationPa
   sp.force_reference = std::max(sp.force_reference, reaction_norm(sys, state));
   const StaticResult r = solve_static(sys, state, sp, &workspace);
   result.newton_iterations += r.iterations;
+  result.indefinite_iterations += r.indefinite_iterations;
   result.residual = r.residual;
   result.energy = r.energy;
   if (!r.converged) result.message = "settling to equilibrium failed: " + r.message;
@@ -199,6 +200,7 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     if (s_next < p.s_end) sp.tolerance = std::max(sp.tolerance, p.increment_tolerance);
     const StaticResult r = solve_static(sys, state, sp, &workspace);
     result.newton_iterations += r.iterations;
+    result.indefinite_iterations += r.indefinite_iterations;
     if (!r.converged) {
       state = good;
       rest = rest_at(y0, x0, s);
@@ -315,6 +317,7 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
                           result.residual, result.energy, "settle", settle_iterations};
     result.history.push_back(pr);
     if (hook) hook(pr);
+    if (params.check_stability) result.stability = check_stability(sys, state, {}, &workspace);
   }
   return result;
 }

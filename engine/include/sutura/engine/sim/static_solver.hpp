@@ -75,6 +75,11 @@ struct StaticResult {
   bool converged = false;
   double lambda_reached = 0.0;  ///< last converged load factor (lambda_end when converged)
   int iterations = 0;           ///< total Newton iterations
+  /// Newton iterations whose tangent was not positive definite (Cholmod only: steps taken with
+  /// a Levenberg-Marquardt shift, the internal-force tangent or LDL^T). Non-zero means the
+  /// path went through states that are not local minima of the potential energy (an
+  /// instability: buckling, wrinkling, a limit point), so where it ends can depend on the path.
+  int indefinite_iterations = 0;
   double residual = 0.0;
   double energy = 0.0;
   std::vector<NewtonIteration> history;

@@ -4,11 +4,13 @@
 // the start stress-free, and the solver then runs while the rest shape moves linearly from y0
 // to x0: rest(s) = lerp(y0, x0, s), s from 0 to 1 (rest_at below). The shell model is never modified.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sutura/engine/shell/rest_state.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/stability.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
 
 namespace sutura::engine {
@@ -58,6 +60,10 @@ struct RelaxationParams {
   /// potential energy at the new rest shape and collapses no triangle; otherwise at the last
   /// converged state. Costs two energy evaluations per increment.
   bool predictor = true;
+  /// After the settling solve: test whether the final shape is a stable equilibrium
+  /// (check_stability: one more tangent and Cholesky factorisation, and an LDL^T count of the
+  /// unstable modes if it is not). Needs supports (the settling solve runs only then).
+  bool check_stability = true;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
 };
@@ -79,8 +85,16 @@ struct RelaxationResult {
   bool cancelled = false;
   double s_reached = 0.0;
   int newton_iterations = 0;
+  /// Newton iterations of the static increments and the settling whose tangent was not
+  /// positive definite (StaticResult::indefinite_iterations). Non-zero: the repair passed an
+  /// instability (a patch or lip buckled or wrinkled on the way), so the final shape can depend
+  /// on the path (the schedule of s); another equilibrium may exist. The dynamic phase of a
+  /// Dynamic relaxation is not counted (its matrix, mass over dt^2 plus K, stays definite).
+  int indefinite_iterations = 0;
   double residual = 0.0;
   double energy = 0.0;
+  /// The final shape's stability (check_stability), when checked: after a settling solve.
+  std::optional<Stability> stability;
   std::vector<RelaxationProgress> history;
   std::string message;  ///< why it stopped early (the state is the last good one)
 };

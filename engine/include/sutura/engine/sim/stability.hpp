@@ -1,0 +1,47 @@
+#pragma once
+// Stability of an equilibrium: is the state a strict local minimum of the total potential
+// energy, or could a small disturbance carry it off to another shape?
+//
+// Second-variation test: an equilibrium is stable when the tangent stiffness on the free DOFs
+// (the Hessian of the potential) is positive definite. That is one Cholesky factorisation. If
+// it fails, the number of unstable modes is the number of negative eigenvalues, counted from the
+// signs of D in an LDL^T factorisation (Sylvester's law of inertia: a congruence, and a
+// symmetric permutation, keep the counts of positive, negative and zero eigenvalues). For the
+// follower pressure the tangent carries the symmetrised load stiffness (loads.hpp), which is
+// the Hessian exactly for a conservative pressure (a closed surface, or rims held fixed).
+#include <string>
+
+#include "sutura/engine/sim/shell_system.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+
+namespace sutura::engine {
+
+struct StabilityParams {
+  double lambda = 1.0;      ///< load factor of the equilibrium (loads are scaled by it)
+  /// Where the tangent is not positive definite, count the unstable modes (an extra simplicial
+  /// LDL^T factorisation: about 0.1 s at 5k elements, 3 s at 20k). Off: negative_modes is -1
+  /// for an unstable state.
+  bool count_modes = true;
+  /// A pivot of LDL^T with |d| <= zero_pivot * max|diag K| counts as zero (a neutral mode, e.g.
+  /// free rigid-body motion or a mechanism): the state is then reported singular.
+  double zero_pivot = 1e-12;
+};
+
+struct Stability {
+  bool stable = false;    ///< the tangent is positive definite: a strict local minimum
+  bool singular = false;  ///< a zero pivot: neutral directions (unsupported, or a mechanism)
+  /// Negative eigenvalues of the tangent (0 when stable; -1 when not counted or singular).
+  int negative_modes = -1;
+  std::string summary;    ///< one sentence for a report, e.g. "stable equilibrium ..."
+};
+
+/// Checks the equilibrium `state` of `sys` at params.lambda. The state should be converged: the
+/// test says nothing about states off equilibrium. `workspace` (optional) lends its
+/// assembler's pattern and its Cholmod solver with the symbolic factorisation (one is made in
+/// it if it holds another kind). Cost: one
+/// tangent assembly and one Cholesky factorisation (plus one LDL^T when unstable and
+/// count_modes). Throws InvalidArgument for invalid parameters.
+Stability check_stability(const ShellSystem& sys, const ShellState& state,
+                          const StabilityParams& params = {}, SolverWorkspace* workspace = nullptr);
+
+}  // namespace sutura::engine
