@@ -29,10 +29,13 @@ ReplayResult replay(const Session& session, const ReplayOptions& options) {
       }
       throw;
     }
-    if (options.progress)
+    if (options.progress) {
       *options.progress << " (" << std::fixed << std::setprecision(3)
                         << details["seconds"].get<double>() << " s)" << std::defaultfloat
                         << std::endl;
+      if (details.contains("warning"))
+        *options.progress << "    warning: " << details["warning"].get<std::string>() << std::endl;
+    }
   }
   ReplayResult result;
   result.report = runner.report("ok");

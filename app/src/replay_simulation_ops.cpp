@@ -25,6 +25,18 @@ void commit_pending_loads(SceneObject& o) {
   o.sim.pending_factor = 0.0;
 }
 
+// What a surgeon must be told about the relaxed shape beyond the numbers: that it is not a
+// stable equilibrium (a small disturbance would carry it off, e.g. buckle a wall that came to
+// rest compressed but symmetric), so the measurements describe a shape the vessel would not
+// keep. Empty when the shape is stable or was not checked. (Indefinite tangents met on the way
+// are not warned about: they occur at trial iterates of ordinary runs, a stretched pair of
+// strips included.)
+std::string equilibrium_warning(const engine::RelaxationResult& r) {
+  if (!r.stability || r.stability->stable) return {};
+  return "the relaxed shape is not a stable equilibrium (" + r.stability->summary +
+         "); the vessel would not keep this shape, so its measurements are not a prediction";
+}
+
 }  // namespace
 
 std::vector<engine::VertexId> Run::resolve(const SceneObject& obj, const VertexSelection& sel) {
@@ -243,13 +255,22 @@ json Run::relax(const SimulateOp& op) {
   json history = json::array();
   for (const auto& h : r.history)
     history.push_back({{"s", h.s}, {"phase", h.phase}, {"residual", h.residual}, {"energy", h.energy}});
-  return {{"model", model->name()},
-          {"relaxation", params.solver == engine::RelaxationSolver::Static ? "static" : "dynamic"},
-          {"s_reached", r.s_reached},
-          {"newton_iterations", r.newton_iterations},
-          {"residual", r.residual},
-          {"energy", r.energy},
-          {"history", history}};
+  json out = {{"model", model->name()},
+              {"relaxation", params.solver == engine::RelaxationSolver::Static ? "static" : "dynamic"},
+              {"s_reached", r.s_reached},
+              {"newton_iterations", r.newton_iterations},
+              {"indefinite_iterations", r.indefinite_iterations},
+              {"residual", r.residual},
+              {"energy", r.energy},
+              {"history", history}};
+  if (r.stability) {
+    out["equilibrium"] = {{"stable", r.stability->stable},
+                          {"singular", r.stability->singular},
+                          {"negative_modes", r.stability->negative_modes},
+                          {"summary", r.stability->summary}};
+  }
+  if (const std::string w = equilibrium_warning(r); !w.empty()) out["warning"] = w;
+  return out;
 }
 
 bool Run::report_progress(const std::string& phase, int step, int steps,

@@ -184,6 +184,7 @@ SimulateOp parse_simulate(Fields& f) {
     if (rp.statics.tolerance >= 1.0) r->fail("tolerance", "must be below 1");
     rp.statics.max_iterations =
         r->optional_int("max_iterations", rp.statics.max_iterations, 1, 1000);
+    rp.check_stability = r->optional_bool("check_stability", rp.check_stability);
     rp.statics.linear_solver = p.linear_solver;
     rp.dynamics = p;
     r->finish();

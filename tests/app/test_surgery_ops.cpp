@@ -148,6 +148,54 @@ TEST(SurgeryOps, TwoStripsJoinWithBothShellModels) {
   }
 }
 
+TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
+  // The Fig. 2.4 strips stretched over their span: stable.
+  // The partial relaxation to s = 0.5 does not settle, so only the second one is checked.
+  const ReplayResult stretched = run(two_strips_text(), "stable");
+  std::vector<nlohmann::json> checked;
+  for (const auto& a : stretched.report["actions"])
+    if (a.contains("equilibrium")) checked.push_back(a);
+  ASSERT_EQ(checked.size(), 1u);
+  const nlohmann::json& last = checked.front();
+  EXPECT_TRUE(last["equilibrium"]["stable"].get<bool>());
+  EXPECT_EQ(last["equilibrium"]["negative_modes"].get<int>(), 0);
+  EXPECT_FALSE(last.contains("warning"));
+  // Overlapping by 0.1 mm, the strips are sutured under a compression 15 times their buckling
+  // strain; perfectly flat, they relax to the flat, unstable equilibrium (six unstable modes,
+  // test_relaxation.cpp), which the report flags. The replay itself succeeds.
+  const std::string compressed =
+      kHeader +
+      "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, "
+      "\"width\": 4, \"segments_length\": 10, \"segments_width\": 4}\n"
+      "{\"op\": \"generate\", \"object\": \"s\", \"append\": true, \"shape\": \"strip\", "
+      "\"length\": 10, \"width\": 4, \"segments_length\": 10, \"segments_width\": 4, "
+      "\"translate\": [9.9, 0, 0]}\n"
+      "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1, \"poisson_ratio\": 0, "
+      "\"thickness\": 0.2}\n"
+      "{\"op\": \"fix\", \"object\": \"s\", \"plane\": {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}}\n"
+      "{\"op\": \"fix\", \"object\": \"s\", \"plane\": {\"point\": [19.9, 0, 0], \"normal\": [1, 0, 0]}}\n"
+      "{\"op\": \"join\", \"object\": \"s\", \"chains\": [{\"from\": [10, -2, 0], \"to\": [10, 2, 0]}, "
+      "{\"from\": [9.9, 2, 0], \"to\": [9.9, -2, 0]}]}\n";
+  const std::string relax =
+      "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6}}\n";
+  const ReplayResult flat = run(compressed + relax, "unstable");
+  EXPECT_EQ(flat.report["status"], "ok");
+  const auto& sim = flat.report["actions"].back();
+  ASSERT_EQ(sim["op"], "simulate");
+  EXPECT_FALSE(sim["equilibrium"]["stable"].get<bool>());
+  EXPECT_EQ(sim["equilibrium"]["negative_modes"].get<int>(), 6);
+  EXPECT_GT(sim["indefinite_iterations"].get<int>(), 0);
+  ASSERT_TRUE(sim.contains("warning"));
+  EXPECT_NE(sim["warning"].get<std::string>().find("not a stable equilibrium"), std::string::npos);
+  // The check can be switched off (it costs a factorisation, and an LDL^T when unstable).
+  const std::string unchecked =
+      "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6, "
+      "\"check_stability\": false}}\n";
+  const auto& quiet = run(compressed + unchecked, "unchecked").report["actions"].back();
+  EXPECT_FALSE(quiet.contains("equilibrium"));
+  EXPECT_FALSE(quiet.contains("warning"));
+}
+
 TEST(SurgeryOps, JoiningSessionIsDeterministic) {
   const std::string text = two_strips_text();
   const ReplayResult a = run(text, "d1"), b = run(text, "d2");

@@ -48,7 +48,13 @@ void finish_worker(GuiState& s) {
   if (!outcome) return;
   if (outcome->ok) {
     s.stages.simulation_finished();
-    s.info(outcome->op + " finished in " + std::to_string(outcome->details.value("seconds", 0.0)) + " s");
+    const nlohmann::json& d = outcome->details;
+    std::string text = outcome->op + " finished in " + std::to_string(d.value("seconds", 0.0)) + " s";
+    if (d.contains("equilibrium") && d["equilibrium"].value("stable", false))
+      text += "; the relaxed shape is a stable equilibrium";
+    s.info(text);
+    // An unstable end state stays on screen until dismissed, like an error.
+    if (d.contains("warning")) s.error("warning: " + d["warning"].get<std::string>());
     return;
   }
   s.stages.simulation_cancelled();

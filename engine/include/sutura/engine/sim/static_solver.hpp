@@ -76,9 +76,11 @@ struct StaticResult {
   double lambda_reached = 0.0;  ///< last converged load factor (lambda_end when converged)
   int iterations = 0;           ///< total Newton iterations
   /// Newton iterations whose tangent was not positive definite (Cholmod only: steps taken with
-  /// a Levenberg-Marquardt shift, the internal-force tangent or LDL^T). Non-zero means the
-  /// path went through states that are not local minima of the potential energy (an
-  /// instability: buckling, wrinkling, a limit point), so where it ends can depend on the path.
+  /// a Levenberg-Marquardt shift, the internal-force tangent or LDL^T). A diagnostic of the
+  /// solve, not of the structure: an iterate far from equilibrium (a trial shape with
+  /// compressed elements, an unstressed shell under pressure) can be indefinite although every
+  /// equilibrium on the way is stable. Whether the equilibrium reached is stable is what
+  /// check_stability (stability.hpp) answers.
   int indefinite_iterations = 0;
   double residual = 0.0;
   double energy = 0.0;

@@ -86,10 +86,10 @@ struct RelaxationResult {
   double s_reached = 0.0;
   int newton_iterations = 0;
   /// Newton iterations of the static increments and the settling whose tangent was not
-  /// positive definite (StaticResult::indefinite_iterations). Non-zero: the repair passed an
-  /// instability (a patch or lip buckled or wrinkled on the way), so the final shape can depend
-  /// on the path (the schedule of s); another equilibrium may exist. The dynamic phase of a
-  /// Dynamic relaxation is not counted (its matrix, mass over dt^2 plus K, stays definite).
+  /// positive definite (StaticResult::indefinite_iterations: a diagnostic of the solve, e.g.
+  /// iterates with compressed elements; it does not mean an equilibrium on the way was
+  /// unstable). The dynamic phase of a Dynamic relaxation is not counted (its matrix, mass
+  /// over dt^2 plus K, stays definite).
   int indefinite_iterations = 0;
   double residual = 0.0;
   double energy = 0.0;
