@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <iostream>
 
@@ -49,7 +50,9 @@ void finish_worker(GuiState& s) {
   if (outcome->ok) {
     s.stages.simulation_finished();
     const nlohmann::json& d = outcome->details;
-    std::string text = outcome->op + " finished in " + std::to_string(d.value("seconds", 0.0)) + " s";
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", d.value("seconds", 0.0));
+    std::string text = outcome->op + " finished in " + seconds + " s";
     if (d.contains("equilibrium") && d["equilibrium"].value("stable", false))
       text += "; the relaxed shape is a stable equilibrium";
     s.info(text);

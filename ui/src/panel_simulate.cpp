@@ -32,12 +32,21 @@ void simulate_section(GuiState& s) {
   const bool running = s.controller.busy();
   const std::optional<std::string> no_relax = unsupported ? unsupported : nothing_to_relax(s);
   ImGui::BeginDisabled(running);
-  ImGui::SliderInt("settle steps", &s.simulation.steps, 1, 400);
-  ImGui::InputFloat("dt [s]", &s.simulation.dt, 0.0f, 0.0f, "%.4f");
+  // A relaxing run is static (Newton per increment of s, then a settling solve): the dynamics
+  // settings below only drive a run with nothing to relax, so only the settings that apply
+  // are enabled.
   ImGui::BeginDisabled(no_relax.has_value());
-  ImGui::SliderInt("relax steps", &s.simulation.relax_steps, 0, 200);
+  ImGui::SliderInt("relax steps", &s.simulation.relax_steps, 1, 100);
   ImGui::EndDisabled();
-  if (no_relax) tooltip_for_last_item(*no_relax);
+  tooltip_for_last_item(no_relax ? *no_relax
+                                 : "Increments of s (rest shape from the joined to the split "
+                                   "shape). Fewer, larger increments usually need fewer Newton "
+                                   "iterations in all; more give more frames of the animation.");
+  ImGui::BeginDisabled(!no_relax.has_value());
+  ImGui::SliderInt("settle steps", &s.simulation.steps, 1, 400);
+  tooltip_for_last_item("Implicit dynamics steps of a run with nothing to relax.");
+  ImGui::InputFloat("dt [s]", &s.simulation.dt, 0.0f, 0.0f, "%.4f");
+  ImGui::EndDisabled();
   noted_checkbox(s.widgets, "Resist collapse (gathered tissue)", &s.simulation.collapse_barrier);
   tooltip_for_last_item(
       "Adds the collapse barrier: triangles resist being squashed below a quarter of their rest "

@@ -143,6 +143,12 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
         if (x.value("no_errors", false))
           for (const auto& m : host.state.messages)
             if (m.error) return fail("the window shows an error: " + m.text);
+        if (x.contains("message_contains")) {
+          const std::string want = x["message_contains"].get<std::string>();
+          bool found = false;
+          for (const auto& m : host.state.messages) found = found || m.text.find(want) != std::string::npos;
+          if (!found) return fail("no message contains \"" + want + "\"");
+        }
         if (x.contains("stage") &&
             x["stage"].get<std::string>() != std::string(to_string(host.state.stages.stage())))
           return fail("stage is " + std::string(to_string(host.state.stages.stage())) +

@@ -12,6 +12,7 @@
 //   {"type": "text"}                   characters into the focused text field
 //   {"screenshot": "file.png"}         save the window as drawn this frame (path as given)
 //   {"expect": {"stage": "Plan", "objects": N, "no_errors": true}}   fail if not so
+//   {"expect": {"message_contains": "text"}}   fail unless a shown message contains the text
 //   {"time_frames": N}                 print the mean frame time of the next N frames
 //   {"quit": true}
 #include <filesystem>
