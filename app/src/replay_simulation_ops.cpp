@@ -33,8 +33,13 @@ void commit_pending_loads(SceneObject& o) {
 // strips included.)
 std::string equilibrium_warning(const engine::RelaxationResult& r) {
   if (!r.stability || r.stability->stable) return {};
-  return "the relaxed shape is not a stable equilibrium (" + r.stability->summary +
-         "); the vessel would not keep this shape, so its measurements are not a prediction";
+  std::string w = "the relaxed shape is not a stable equilibrium (" + r.stability->summary +
+                  "); the vessel would not keep this shape, so its measurements are not a "
+                  "prediction";
+  if (r.escapes > 0)
+    w += " (perturbed along an unstable mode and settled again " + std::to_string(r.escapes) +
+         " times without reaching a stable shape)";
+  return w;
 }
 
 }  // namespace
@@ -267,7 +272,13 @@ json Run::relax(const SimulateOp& op) {
     out["equilibrium"] = {{"stable", r.stability->stable},
                           {"singular", r.stability->singular},
                           {"negative_modes", r.stability->negative_modes},
-                          {"summary", r.stability->summary}};
+                          {"summary", r.stability->summary},
+                          {"escapes", r.escapes}};
+    if (r.stability_before_escapes) {
+      out["equilibrium"]["before_escapes"] = {
+          {"negative_modes", r.stability_before_escapes->negative_modes},
+          {"summary", r.stability_before_escapes->summary}};
+    }
   }
   if (const std::string w = equilibrium_warning(r); !w.empty()) out["warning"] = w;
   return out;

@@ -65,6 +65,7 @@ void check(const ShellSystem& sys, const RestState& rest, const RestState& y0,
     throw InvalidArgument("s_end must be in [s_start, 1]");
   if (p.settle_steps < 0) throw InvalidArgument("settle_steps must be >= 0");
   if (p.max_cuts < 0) throw InvalidArgument("max_cuts must be >= 0");
+  if (p.max_escapes < 0) throw InvalidArgument("max_escapes must be >= 0");
   if (!(p.increment_tolerance > 0.0 && p.increment_tolerance < 1.0))
     throw InvalidArgument("increment_tolerance must be in (0, 1)");
 }
@@ -132,6 +133,50 @@ bool settle_static(const ShellSystem& sys, ShellState& state, const RelaxationPa
   result.energy = r.energy;
   if (!r.converged) result.message = "settling to equilibrium failed: " + r.message;
   return r.converged;
+}
+
+// Mean length of the rest elements' edges: the scale of a perturbation that stays within one
+// element's reach of the current shape.
+double mean_rest_edge(const RestState& rest) {
+  double sum = 0.0;
+  for (const auto& e : rest.elements)
+    sum += (e.X[1] - e.X[0]).norm() + (e.X[2] - e.X[1]).norm() + (e.X[0] - e.X[2]).norm();
+  return rest.elements.empty() ? 0.0 : sum / (3.0 * double(rest.elements.size()));
+}
+
+// Moves `state` (an unstable equilibrium) downhill along the unstable mode: the largest
+// translation is `reach` (or 1/2, 1/4, 1/8 of it), in the direction of the lower total
+// potential energy. Along a direction of negative curvature the energy falls as a^2/2 v.Kv
+// at first; a step that does not lower it (the quartic terms of a stiff branch) is shortened.
+// Returns false if no step lowers the potential.
+bool perturb_downhill(const ShellSystem& sys, ShellState& state, const UnstableMode& mode,
+                      double reach) {
+  const int d = sys.dofs_per_node();
+  double largest = 0.0;
+  for (std::size_t i = 0; i < state.x.size(); ++i)
+    largest = std::max(largest, mode.direction.segment<3>(Eigen::Index(d * i)).norm());
+  if (!(largest > 0.0) || !(reach > 0.0)) return false;
+  const DofMap map(sys);
+  const double e0 = evaluate(sys, map, state, 1.0, false).internal_energy;
+  for (double a = reach / largest; a >= reach / largest / 8.0; a *= 0.5) {
+    ShellState best;
+    double best_p = e0;
+    for (const double sign : {1.0, -1.0}) {
+      ShellState trial = state;
+      apply_increment(trial, sign * a * mode.direction, d);
+      const double p = evaluate(sys, map, trial, 1.0, false).internal_energy -
+                       external_work(sys, state, trial, 1.0);
+      if (std::isfinite(p) && p < best_p) {
+        best_p = p;
+        best = std::move(trial);
+      }
+    }
+    if (best_p < e0) {
+      state = std::move(best);
+      return true;
+    }
+  }
+  return false;
 }
 
 // The secant predictor of path following: the state at s_next extrapolated linearly from the
@@ -287,6 +332,31 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
   return result;
 }
 
+// An unstable settled shape is perturbed along an unstable mode and settled again, up to
+// max_escapes times (RelaxationParams::max_escapes). A perturbation that cannot lower the
+// energy, or a settle that fails, leaves the last settled (unstable) shape, which the report
+// then flags.
+void escape_instability(const ShellSystem& sys, const RestState& rest, ShellState& state,
+                        const RelaxationParams& params, const Scales& scales,
+                        RelaxationResult& result, SolverWorkspace& workspace) {
+  const double reach = 0.2 * mean_rest_edge(rest);
+  while (result.stability && !result.stability->stable && !result.stability->singular &&
+         result.escapes < params.max_escapes) {
+    const std::optional<UnstableMode> mode = unstable_mode(sys, state, 1.0, 30, &workspace);
+    if (!mode) return;
+    const ShellState settled = state;
+    const RelaxationResult before = result;
+    if (!perturb_downhill(sys, state, *mode, reach) ||
+        !settle_static(sys, state, params, scales, result, workspace)) {
+      state = settled;
+      result = before;
+      return;
+    }
+    if (result.escapes++ == 0) result.stability_before_escapes = result.stability;
+    result.stability = check_stability(sys, state, {}, &workspace);
+  }
+}
+
 }  // namespace
 
 RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState& y0,
@@ -317,7 +387,10 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
                           result.residual, result.energy, "settle", settle_iterations};
     result.history.push_back(pr);
     if (hook) hook(pr);
-    if (params.check_stability) result.stability = check_stability(sys, state, {}, &workspace);
+    if (params.check_stability) {
+      result.stability = check_stability(sys, state, {}, &workspace);
+      escape_instability(sys, rest, state, params, scales, result, workspace);
+    }
   }
   return result;
 }

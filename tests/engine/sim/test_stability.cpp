@@ -54,6 +54,36 @@ TEST(Stability, EulerBucklingLoadsOfAClampedStripSeparateStableFromUnstable) {
   EXPECT_TRUE(compressed(-10.0 * P1, 40).stable);
 }
 
+TEST(Stability, TheUnstableModeOfACompressedStripIsEulersFirstBucklingMode) {
+  // Between P_1 and P_2 the one direction of negative curvature is the first buckling mode,
+  // w(x) = 1 - cos(pi x / (2 L)) for the clamped-free column.
+  const double P1 = kPi * kPi * 100.0 / 400.0;
+  for (const double factor : {0.5, 1.5}) {
+    Cantilever c(make_corotational_shell(), 0.0, 40, 2);
+    c.sys.loads.nodal.clear();
+    const auto tip = select_vertices(c.mesh.positions(),
+                                     SelectPlaneBand{Vec3(10, 0, 0), Vec3(1, 0, 0), 1e-9});
+    for (auto v : tip)
+      c.sys.loads.nodal.push_back({v.index(), Vec3(-factor * P1 / tip.size(), 0, 0), Vec3::Zero()});
+    ASSERT_TRUE(solve_static(c.sys, c.state, StaticSolverParams{}).converged);
+    const std::optional<UnstableMode> mode = unstable_mode(c.sys, c.state);
+    if (factor < 1.0) {
+      EXPECT_FALSE(mode.has_value()) << "stable below P_1";
+      continue;
+    }
+    ASSERT_TRUE(mode.has_value());
+    EXPECT_LT(mode->curvature, 0.0);
+    // Correlation of the modal deflection w (the z translations) with Euler's shape.
+    double ww = 0.0, ee = 0.0, we = 0.0;
+    for (std::size_t i = 0; i < c.mesh.num_vertices(); ++i) {
+      const double w = mode->direction[Eigen::Index(6 * i + 2)];
+      const double e = 1.0 - std::cos(kPi * c.mesh.position(VertexId(i)).x() / 20.0);
+      ww += w * w, ee += e * e, we += w * e;
+    }
+    EXPECT_GT(std::abs(we) / std::sqrt(ww * ee), 0.999);
+  }
+}
+
 TEST(Stability, ModesAreCountedOnlyWhenAsked) {
   const double P1 = kPi * kPi * 100.0 / 400.0;
   StabilityParams p;

@@ -9,6 +9,7 @@
 // symmetric permutation, keep the counts of positive, negative and zero eigenvalues). For the
 // follower pressure the tangent carries the symmetrised load stiffness (loads.hpp), which is
 // the Hessian exactly for a conservative pressure (a closed surface, or rims held fixed).
+#include <optional>
 #include <string>
 
 #include "sutura/engine/sim/shell_system.hpp"
@@ -34,6 +35,24 @@ struct Stability {
   int negative_modes = -1;
   std::string summary;    ///< one sentence for a report, e.g. "stable equilibrium ..."
 };
+
+/// A direction of negative curvature of the tangent K at `state`: where an unstable
+/// equilibrium can be left downhill (the energy falls as a^2/2 curvature along a v).
+struct UnstableMode {
+  Eigen::VectorXd direction;  ///< full DOFs (zero at fixed ones), unit norm over the free DOFs
+  double curvature = 0.0;     ///< v^T K v < 0 (N/mm for translations)
+};
+
+/// Finds a direction of negative curvature by inverse iteration with the Levenberg-Marquardt
+/// shifted tangent K + mu diag|K| (mu the smallest of 1e-4, 1e-3, ... that makes it positive
+/// definite): the iteration amplifies the components along the most negative eigenvalues of K
+/// most, so after a few back-substitutions the Rayleigh quotient v^T K v is negative. The
+/// start vector is a fixed pseudo-random sequence (the result is deterministic). Cost: a few
+/// Cholesky factorisations plus `iterations` back-substitutions and sparse products.
+/// nullopt when K is positive definite or no negative curvature was found.
+std::optional<UnstableMode> unstable_mode(const ShellSystem& sys, const ShellState& state,
+                                          double lambda = 1.0, int iterations = 30,
+                                          SolverWorkspace* workspace = nullptr);
 
 /// Checks the equilibrium `state` of `sys` at params.lambda. The state should be converged: the
 /// test says nothing about states off equilibrium. `workspace` (optional) lends its

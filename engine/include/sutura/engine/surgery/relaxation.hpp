@@ -64,6 +64,14 @@ struct RelaxationParams {
   /// (check_stability: one more tangent and Cholesky factorisation, and an LDL^T count of the
   /// unstable modes if it is not). Needs supports (the settling solve runs only then).
   bool check_stability = true;
+  /// With check_stability, when the settled shape is not a stable equilibrium (a symmetric
+  /// configuration held on an unstable branch, e.g. a wall compressed but perfectly flat,
+  /// which nothing in the energy pushes sideways): perturb it along a direction of negative
+  /// curvature (unstable_mode; by a fifth of the mean rest edge length at most, the sign that
+  /// lowers the potential) and settle again, at most this often, >= 0. The result is the
+  /// shape the tissue would buckle into (of mirror-image shapes, the one the perturbation
+  /// picks). 0: only report.
+  int max_escapes = 3;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
 };
@@ -95,6 +103,10 @@ struct RelaxationResult {
   double energy = 0.0;
   /// The final shape's stability (check_stability), when checked: after a settling solve.
   std::optional<Stability> stability;
+  /// How often an unstable settled shape was perturbed along an unstable mode and settled
+  /// again (max_escapes), and the stability found before the first such perturbation.
+  int escapes = 0;
+  std::optional<Stability> stability_before_escapes;
   std::vector<RelaxationProgress> history;
   std::string message;  ///< why it stopped early (the state is the last good one)
 };
