@@ -28,12 +28,18 @@ void commit_pending_loads(SceneObject& o) {
 // What a surgeon must be told about the relaxed shape beyond the numbers: that it is not a
 // stable equilibrium (a small disturbance would carry it off, e.g. buckle a wall that came to
 // rest compressed but symmetric), so the measurements describe a shape the vessel would not
-// keep. Empty when the shape is stable or was not checked. (Indefinite tangents met on the way
+// keep; or that it is marginal, or could not be assessed. Empty when the shape is stable or
+// was not checked. (Indefinite tangents met on the way
 // are not warned about: they occur at trial iterates of ordinary runs, a stretched pair of
 // strips included.)
 std::string equilibrium_warning(const engine::RelaxationResult& r) {
   if (!r.stability || r.stability->stable) return {};
-  std::string w = "the relaxed shape is not a stable equilibrium (" + r.stability->summary +
+  const engine::Stability& st = *r.stability;
+  if (!st.assessed) return "the stability of the relaxed shape could not be assessed (" + st.summary + ")";
+  if (st.negative_modes == 0)
+    return "the relaxed shape is at the limit of stability (" + st.summary +
+           "); a small disturbance may change it, so read its measurements with care";
+  std::string w = "the relaxed shape is not a stable equilibrium (" + st.summary +
                   "); the vessel would not keep this shape, so its measurements are not a "
                   "prediction";
   if (r.escapes > 0)
@@ -269,7 +275,8 @@ json Run::relax(const SimulateOp& op) {
               {"energy", r.energy},
               {"history", history}};
   if (r.stability) {
-    out["equilibrium"] = {{"stable", r.stability->stable},
+    out["equilibrium"] = {{"assessed", r.stability->assessed},
+                          {"stable", r.stability->stable},
                           {"singular", r.stability->singular},
                           {"negative_modes", r.stability->negative_modes},
                           {"summary", r.stability->summary},

@@ -164,6 +164,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
                           "\"settle_steps\": 30}}\n",
                 2, "relax.settle_steps", "no effect"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"max_escapes\": -1}}\n", 2,
+                "relax.max_escapes", "between"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"check_stability\": 1}}\n", 2,
+                "relax.check_stability", "true or false"},
         BadCase{kHeader + "{\"op\": \"check\", \"probe\": \"p\", \"quantity\": \"uz\", "
                           "\"value\": 1}\n",
                 2, "rel_tol", "rel_tol and/or abs_tol"}),

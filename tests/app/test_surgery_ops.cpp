@@ -153,12 +153,12 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
   // The partial relaxation to s = 0.5 does not settle, so only the second one is checked.
   const ReplayResult stretched = run(two_strips_text(), "stable");
   std::vector<nlohmann::json> checked;
-  for (const auto& a : stretched.report["actions"])
+  for (const auto& a : stretched.report.at("actions"))
     if (a.contains("equilibrium")) checked.push_back(a);
   ASSERT_EQ(checked.size(), 1u);
   const nlohmann::json& last = checked.front();
-  EXPECT_TRUE(last["equilibrium"]["stable"].get<bool>());
-  EXPECT_EQ(last["equilibrium"]["negative_modes"].get<int>(), 0);
+  EXPECT_TRUE(last.at("equilibrium").at("stable").get<bool>());
+  EXPECT_EQ(last.at("equilibrium").at("negative_modes").get<int>(), 0);
   EXPECT_FALSE(last.contains("warning"));
   // Overlapping by 0.1 mm, the strips are sutured under a compression 15 times their buckling
   // strain; perfectly flat, they relax to the flat, unstable equilibrium (six unstable modes,
@@ -180,28 +180,28 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
       "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6, "
       "\"max_escapes\": 0}}\n";
   const ReplayResult flat = run(compressed + relax, "unstable");
-  EXPECT_EQ(flat.report["status"], "ok");
-  const auto& sim = flat.report["actions"].back();
-  ASSERT_EQ(sim["op"], "simulate");
-  EXPECT_FALSE(sim["equilibrium"]["stable"].get<bool>());
-  EXPECT_EQ(sim["equilibrium"]["negative_modes"].get<int>(), 6);
-  EXPECT_GT(sim["indefinite_iterations"].get<int>(), 0);
+  EXPECT_EQ(flat.report.at("status"), "ok");
+  const auto& sim = flat.report.at("actions").back();
+  ASSERT_EQ(sim.at("op"), "simulate");
+  EXPECT_FALSE(sim.at("equilibrium").at("stable").get<bool>());
+  EXPECT_EQ(sim.at("equilibrium").at("negative_modes").get<int>(), 6);
+  EXPECT_GT(sim.at("indefinite_iterations").get<int>(), 0);
   ASSERT_TRUE(sim.contains("warning"));
-  EXPECT_NE(sim["warning"].get<std::string>().find("not a stable equilibrium"), std::string::npos);
+  EXPECT_NE(sim.at("warning").get<std::string>().find("not a stable equilibrium"), std::string::npos);
   // By default the shape is perturbed along an unstable mode and settled again: it buckles
   // into a stable arch (test_relaxation.cpp), and the report keeps what was found first.
   const std::string escaping =
       "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6}}\n";
-  const nlohmann::json buckled = run(compressed + escaping, "escaped").report["actions"].back();
-  EXPECT_TRUE(buckled["equilibrium"]["stable"].get<bool>());
-  EXPECT_EQ(buckled["equilibrium"]["escapes"].get<int>(), 1);
-  EXPECT_EQ(buckled["equilibrium"]["before_escapes"]["negative_modes"].get<int>(), 6);
+  const nlohmann::json buckled = run(compressed + escaping, "escaped").report.at("actions").back();
+  EXPECT_TRUE(buckled.at("equilibrium").at("stable").get<bool>());
+  EXPECT_EQ(buckled.at("equilibrium").at("escapes").get<int>(), 1);
+  EXPECT_EQ(buckled.at("equilibrium").at("before_escapes").at("negative_modes").get<int>(), 6);
   EXPECT_FALSE(buckled.contains("warning"));
   // The check can be switched off (it costs a factorisation, and an LDL^T when unstable).
   const std::string unchecked =
       "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6, "
       "\"check_stability\": false}}\n";
-  const nlohmann::json quiet = run(compressed + unchecked, "unchecked").report["actions"].back();
+  const nlohmann::json quiet = run(compressed + unchecked, "unchecked").report.at("actions").back();
   EXPECT_FALSE(quiet.contains("equilibrium"));
   EXPECT_FALSE(quiet.contains("warning"));
 }

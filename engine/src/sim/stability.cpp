@@ -10,11 +10,45 @@
 
 namespace sutura::engine {
 
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+struct Inertia {
+  bool ok = false;   // the factorisation ran to the end (no exactly zero pivot)
+  int negative = 0;  // pivots below -tiny
+  int tiny = 0;      // pivots within +-tiny
+};
+
+Inertia inertia(const SpMat& A, double tiny) {
+  const Eigen::SimplicialLDLT<SpMat, Eigen::Lower> ldlt(A);
+  Inertia out;
+  if (ldlt.info() != Eigen::Success) return out;
+  out.ok = true;
+  const Eigen::VectorXd d = ldlt.vectorD();
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (!(std::abs(d[i]) > tiny)) ++out.tiny;
+    else if (d[i] < 0.0) ++out.negative;
+  }
+  return out;
+}
+
+// K + mu diag(scale): the Levenberg-Marquardt shift (mu > 0) or its mirror (mu < 0).
+SpMat shifted(const SpMat& K, const Eigen::VectorXd& scale, double mu) {
+  SpMat out = K;
+  for (Eigen::Index i = 0; i < out.rows(); ++i) out.coeffRef(i, i) += mu * scale[i];
+  return out;
+}
+
+}  // namespace
+
 Stability check_stability(const ShellSystem& sys, const ShellState& state,
                           const StabilityParams& params, SolverWorkspace* workspace) {
   if (!std::isfinite(params.lambda)) throw InvalidArgument("stability: lambda must be finite");
   if (!(params.zero_pivot >= 0.0 && params.zero_pivot < 1.0))
     throw InvalidArgument("stability: zero_pivot must be in [0, 1)");
+  if (!(params.neutral_band > 0.0 && params.neutral_band < 1.0))
+    throw InvalidArgument("stability: neutral_band must be in (0, 1)");
   SolverWorkspace local;
   SolverWorkspace& ws = workspace != nullptr ? *workspace : local;
   const DofMap map(sys);
@@ -27,6 +61,7 @@ Stability check_stability(const ShellSystem& sys, const ShellState& state,
   }
   const Evaluation ev = evaluate(sys, map, state, params.lambda, true, true, &ws.assembler());
   if (!ev.tangent.coeffs().allFinite()) {
+    out.assessed = false;
     out.summary = "not assessed: the tangent stiffness is not finite";
     return out;
   }
@@ -42,43 +77,45 @@ Stability check_stability(const ShellSystem& sys, const ShellState& state,
     out.summary = "unstable equilibrium: the tangent stiffness is not positive definite";
     return out;
   }
-  // The inertia from LDL^T. Eigen's simplicial LDL^T does not pivot for stability, so a tiny
-  // pivot may come out inaccurate, but its sign count is exact in exact arithmetic and robust
-  // wherever no pivot is near zero; near-zero pivots are reported as singular instead.
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt(ev.tangent);
-  const double scale = ev.tangent.diagonal().cwiseAbs().maxCoeff();
-  if (ldlt.info() != Eigen::Success) {
-    out.singular = true;
-    out.summary = "singular tangent stiffness (a zero pivot): the state has neutral directions "
-                  "(free rigid-body motion or a mechanism)";
-    return out;
-  }
-  const Eigen::VectorXd d = ldlt.vectorD();
-  int negative = 0, zero = 0;
-  for (Eigen::Index i = 0; i < d.size(); ++i) {
-    if (!(std::abs(d[i]) > params.zero_pivot * scale)) ++zero;
-    else if (d[i] < 0.0) ++negative;
-  }
-  std::ostringstream m;
-  if (zero > 0) {
-    out.singular = true;
-    m << "singular tangent stiffness (" << zero << " zero pivot" << (zero > 1 ? "s" : "")
-      << "): the state has neutral directions (free rigid-body motion or a mechanism)";
-    if (negative > 0) m << " and " << negative << " unstable mode" << (negative > 1 ? "s" : "");
-    out.summary = m.str();
-    return out;
-  }
-  if (negative == 0) {
-    // Cholesky failed on round-off alone: the smallest eigenvalue is at the noise level.
-    out.singular = true;
-    out.summary = "marginal: the tangent stiffness is positive semi-definite to round-off (an "
-                  "eigenvalue near zero: at the onset of an instability)";
-    return out;
+  // The inertia from LDL^T. Eigen's simplicial LDL^T does not pivot, so a tiny pivot only says
+  // that a leading block of the reordered matrix is nearly singular, not that K is. Then (and
+  // when LDL^T finds no negative pivot although Cholesky failed: round-off) the counts of
+  // K + delta D and K - delta D (D = diag|K|) decide: equal, K has that many negative
+  // eigenvalues and none near zero; different, the difference lies within +-delta of zero
+  // (delta = neutral_band, on the scaled matrix below).
+  // All on S K S with S = diag|K|^-1/2 (a congruence: the same inertia), whose diagonal is
+  // +-1, so the thresholds mean the same for translations (E t) and rotations (E t^3).
+  const Eigen::VectorXd s =
+      ev.tangent.diagonal().cwiseAbs().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const SpMat scaled = s.asDiagonal() * ev.tangent * s.asDiagonal();
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(scaled.rows());
+  const double tiny = params.zero_pivot;
+  const Inertia direct = inertia(scaled, tiny);
+  int negative = direct.negative, neutral = 0;
+  if (!direct.ok || direct.tiny > 0 || direct.negative == 0) {
+    const Inertia plus = inertia(shifted(scaled, ones, params.neutral_band), tiny);
+    const Inertia minus = inertia(shifted(scaled, ones, -params.neutral_band), tiny);
+    if (!plus.ok || !minus.ok || plus.tiny > 0 || minus.tiny > 0) {
+      out.assessed = false;
+      out.summary = "not assessed: the tangent stiffness and its shifts have zero pivots";
+      return out;
+    }
+    negative = plus.negative;
+    neutral = minus.negative - plus.negative;
   }
   out.negative_modes = negative;
-  m << "unstable equilibrium: the tangent stiffness has " << negative << " negative eigenvalue"
-    << (negative > 1 ? "s" : "") << " (a small disturbance would carry the shape away, e.g. "
-    << "buckle it)";
+  out.singular = neutral > 0;
+  std::ostringstream m;
+  if (negative == 0) {
+    m << "marginal: the tangent stiffness is positive semi-definite with " << neutral
+      << " eigenvalue" << (neutral > 1 ? "s" : "") << " near zero (neutral directions: free "
+      << "rigid-body motion, a mechanism, or the onset of an instability)";
+  } else {
+    m << "unstable equilibrium: the tangent stiffness has " << negative << " negative eigenvalue"
+      << (negative > 1 ? "s" : "");
+    if (neutral > 0) m << " and " << neutral << " near zero";
+    m << " (a small disturbance would carry the shape away, e.g. buckle it)";
+  }
   out.summary = m.str();
   return out;
 }
@@ -98,24 +135,25 @@ std::optional<UnstableMode> unstable_mode(const ShellSystem& sys, const ShellSta
   if (solver.factorize_definite(K)) return std::nullopt;
   const Eigen::VectorXd diag = K.diagonal().cwiseAbs().cwiseMax(1e-300);
   const auto factorize_shifted = [&](double mu) {
-    Eigen::SparseMatrix<double> shifted = K;
-    for (Eigen::Index i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += mu * diag[i];
-    return solver.factorize_definite(shifted);
+    return solver.factorize_definite(shifted(K, diag, mu));
   };
   // Inverse iteration converges as the ratio of the two smallest eigenvalues of the shifted
   // matrix, so the shift is brought close to the smallest that makes it definite, mu* (where
-  // the most unstable mode's shifted eigenvalue passes zero): decades bracket it, four
-  // bisections in log scale narrow the bracket to a factor 1.16. With a whole decade of
-  // excess shift the soft modes all sit near mu diag and 30 iterations do not separate them
-  // (a compressed strip at 1.5 times its buckling load: no negative curvature found).
-  double hi = 1e-4, lo = 0.0;
-  if (factorize_shifted(hi)) {
-    for (lo = hi / 10.0; lo > 1e-12 && factorize_shifted(lo); lo /= 10.0) hi = lo;
+  // the most unstable mode's shifted eigenvalue passes zero): decades from 1e-12 to 1e4
+  // bracket it, four bisections in log scale narrow the bracket to a factor 1.16. With a
+  // whole decade of excess shift the soft modes all sit near mu diag and 30 iterations do not
+  // separate them (a compressed strip at 1.5 times its buckling load: no negative curvature
+  // found).
+  int e_hi = -4;  // the bracket [10^e_lo, 10^e_hi]: definite at e_hi, not at e_lo
+  if (factorize_shifted(1e-4)) {
+    while (e_hi > -12 && factorize_shifted(std::pow(10.0, e_hi - 1))) --e_hi;
   } else {
-    for (lo = hi, hi *= 10.0; hi <= 1e4 && !factorize_shifted(hi); hi *= 10.0) lo = hi;
-    if (hi > 1e4) return std::nullopt;
+    do {
+      if (++e_hi > 4) return std::nullopt;
+    } while (!factorize_shifted(std::pow(10.0, e_hi)));
   }
-  for (int i = 0; i < 4 && lo > 0.0; ++i) {
+  double lo = std::pow(10.0, e_hi - 1), hi = std::pow(10.0, e_hi);
+  for (int i = 0; i < 4; ++i) {
     const double mid = std::sqrt(lo * hi);
     (factorize_shifted(mid) ? hi : lo) = mid;
   }

@@ -145,25 +145,35 @@ double mean_rest_edge(const RestState& rest) {
 }
 
 // Moves `state` (an unstable equilibrium) downhill along the unstable mode: the largest
-// translation is `reach` (or 1/2, 1/4, 1/8 of it), in the direction of the lower total
-// potential energy. Along a direction of negative curvature the energy falls as a^2/2 v.Kv
-// at first; a step that does not lower it (the quartic terms of a stiff branch) is shortened.
-// Returns false if no step lowers the potential.
+// translation is `reach` and the largest rotation 0.1 rad (or 1/2, 1/4, 1/8 of the step), in
+// the direction of the lower total potential energy. Along a direction of negative curvature
+// the energy falls as a^2/2 v.Kv at first; a step that does not lower it (the quartic terms
+// of a stiff branch), or that squashes a triangle below the solver's collapse guard
+// (min_area_ratio), is shortened. Returns false if no step qualifies.
 bool perturb_downhill(const ShellSystem& sys, ShellState& state, const UnstableMode& mode,
-                      double reach) {
+                      double reach, double min_area_ratio_floor) {
   const int d = sys.dofs_per_node();
-  double largest = 0.0;
-  for (std::size_t i = 0; i < state.x.size(); ++i)
+  double largest = 0.0, turn = 0.0;
+  for (std::size_t i = 0; i < state.x.size(); ++i) {
     largest = std::max(largest, mode.direction.segment<3>(Eigen::Index(d * i)).norm());
+    if (d == 6) turn = std::max(turn, mode.direction.segment<3>(Eigen::Index(d * i + 3)).norm());
+  }
   if (!(largest > 0.0) || !(reach > 0.0)) return false;
+  constexpr double kMaxTurn = 0.1;  // rad
+  const double a0 = turn > 0.0 ? std::min(reach / largest, kMaxTurn / turn) : reach / largest;
+  const double area_floor =
+      min_area_ratio_floor > 0.0
+          ? std::min(min_area_ratio_floor, min_area_ratio(sys.problem, state))
+          : 0.0;
   const DofMap map(sys);
   const double e0 = evaluate(sys, map, state, 1.0, false).internal_energy;
-  for (double a = reach / largest; a >= reach / largest / 8.0; a *= 0.5) {
+  for (double a = a0; a >= a0 / 8.0; a *= 0.5) {
     ShellState best;
     double best_p = e0;
     for (const double sign : {1.0, -1.0}) {
       ShellState trial = state;
       apply_increment(trial, sign * a * mode.direction, d);
+      if (area_floor > 0.0 && min_area_ratio(sys.problem, trial) < area_floor) continue;
       const double p = evaluate(sys, map, trial, 1.0, false).internal_energy -
                        external_work(sys, state, trial, 1.0);
       if (std::isfinite(p) && p < best_p) {
@@ -335,18 +345,24 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
 // An unstable settled shape is perturbed along an unstable mode and settled again, up to
 // max_escapes times (RelaxationParams::max_escapes). A perturbation that cannot lower the
 // energy, or a settle that fails, leaves the last settled (unstable) shape, which the report
-// then flags.
+// then flags. Only with the Cholmod solver: the settle must minimise the energy (the
+// Levenberg-Marquardt shift and the energy line search, static_solver.hpp), or plain Newton
+// would lead straight back to the saddle. Each escape is reported to `hook` as an "escape"
+// step; returning false cancels (the state is kept as it is).
 void escape_instability(const ShellSystem& sys, const RestState& rest, ShellState& state,
                         const RelaxationParams& params, const Scales& scales,
-                        RelaxationResult& result, SolverWorkspace& workspace) {
+                        RelaxationResult& result, SolverWorkspace& workspace,
+                        const RelaxationHook& hook) {
+  if (params.statics.linear_solver != LinearSolverKind::Cholmod) return;
   const double reach = 0.2 * mean_rest_edge(rest);
-  while (result.stability && !result.stability->stable && !result.stability->singular &&
+  while (result.stability && result.stability->negative_modes > 0 &&
          result.escapes < params.max_escapes) {
     const std::optional<UnstableMode> mode = unstable_mode(sys, state, 1.0, 30, &workspace);
     if (!mode) return;
     const ShellState settled = state;
     const RelaxationResult before = result;
-    if (!perturb_downhill(sys, state, *mode, reach) ||
+    const int iterations_before = result.newton_iterations;
+    if (!perturb_downhill(sys, state, *mode, reach, params.statics.min_area_ratio) ||
         !settle_static(sys, state, params, scales, result, workspace)) {
       state = settled;
       result = before;
@@ -354,6 +370,14 @@ void escape_instability(const ShellSystem& sys, const RestState& rest, ShellStat
     }
     if (result.escapes++ == 0) result.stability_before_escapes = result.stability;
     result.stability = check_stability(sys, state, {}, &workspace);
+    const int n = int(result.history.size()) + 1;
+    RelaxationProgress pr{1.0, n, n, result.residual, result.energy, "escape",
+                          result.newton_iterations - iterations_before};
+    result.history.push_back(pr);
+    if (hook && !hook(pr)) {
+      result.cancelled = true;
+      return;
+    }
   }
 }
 
@@ -389,7 +413,7 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
     if (hook) hook(pr);
     if (params.check_stability) {
       result.stability = check_stability(sys, state, {}, &workspace);
-      escape_instability(sys, rest, state, params, scales, result, workspace);
+      escape_instability(sys, rest, state, params, scales, result, workspace, hook);
     }
   }
   return result;

@@ -95,13 +95,20 @@ TEST(Stability, ModesAreCountedOnlyWhenAsked) {
 }
 
 TEST(Stability, AnUnsupportedStructureIsSingularNotStable) {
-  // Free rigid-body motion: six zero eigenvalues.
+  // Free rigid-body motion: six zero eigenvalues, none negative.
   Cantilever c(make_corotational_shell(), 0.0, 8, 2);
   c.sys.constraints = Constraints{};
   const Stability s = check_stability(c.sys, c.state);
+  EXPECT_TRUE(s.assessed);
   EXPECT_FALSE(s.stable) << s.summary;
   EXPECT_TRUE(s.singular) << s.summary;
-  EXPECT_EQ(s.negative_modes, -1);
+  EXPECT_EQ(s.negative_modes, 0);
+  EXPECT_NE(s.summary.find("6 eigenvalues near zero"), std::string::npos) << s.summary;
+  // Held at one end but compressed past P_1: one unstable mode, nothing neutral.
+  const double P1 = kPi * kPi * 100.0 / 400.0;
+  const Stability one = compressed(1.5 * P1, 20);
+  EXPECT_FALSE(one.singular) << one.summary;
+  EXPECT_EQ(one.negative_modes, 1);
 }
 
 TEST(Stability, AWorkspaceGivesTheSameAnswerAndEveryDofHeldIsStable) {
@@ -109,6 +116,15 @@ TEST(Stability, AWorkspaceGivesTheSameAnswerAndEveryDofHeldIsStable) {
   SolverWorkspace ws;
   EXPECT_TRUE(check_stability(c.sys, c.state, {}, &ws).stable);
   EXPECT_TRUE(check_stability(c.sys, c.state, {}, &ws).stable);
+  // A workspace that served the checks (and the shifted factorisations of unstable_mode)
+  // gives a later solve bit for bit what a fresh one gives.
+  Cantilever a(make_corotational_shell(), 4.0, 8, 2), b(make_corotational_shell(), 4.0, 8, 2);
+  EXPECT_FALSE(unstable_mode(a.sys, a.state, 1.0, 30, &ws).has_value());
+  StaticSolverParams sp;
+  sp.load_steps = 2;
+  ASSERT_TRUE(solve_static(a.sys, a.state, sp, &ws).converged);
+  ASSERT_TRUE(solve_static(b.sys, b.state, sp).converged);
+  for (std::size_t i = 0; i < a.state.x.size(); ++i) EXPECT_EQ(a.state.x[i], b.state.x[i]);
   std::vector<VertexId> all;
   for (std::size_t v = 0; v < c.mesh.num_vertices(); ++v) all.emplace_back(v);
   c.sys.constraints.fix(all, kAllDofs, c.mesh.num_vertices());
@@ -125,4 +141,8 @@ TEST(Stability, RejectsBadParameters) {
   p = {};
   p.zero_pivot = -1.0;
   EXPECT_THROW(check_stability(c.sys, c.state, p), InvalidArgument);
+  p = {};
+  p.neutral_band = 0.0;
+  EXPECT_THROW(check_stability(c.sys, c.state, p), InvalidArgument);
+  EXPECT_THROW(unstable_mode(c.sys, c.state, 1.0, 0), InvalidArgument);
 }

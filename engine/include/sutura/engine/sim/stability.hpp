@@ -23,15 +23,22 @@ struct StabilityParams {
   /// LDL^T factorisation: about 0.1 s at 5k elements, 3 s at 20k). Off: negative_modes is -1
   /// for an unstable state.
   bool count_modes = true;
-  /// A pivot of LDL^T with |d| <= zero_pivot * max|diag K| counts as zero (a neutral mode, e.g.
-  /// free rigid-body motion or a mechanism): the state is then reported singular.
+  /// The modes are counted on the diagonally scaled tangent S K S (S = diag|K|^-1/2: the same
+  /// inertia, unit diagonal). A pivot of its LDL^T with |d| <= zero_pivot counts as tiny; the
+  /// modes are then counted on S K S +- neutral_band I instead (a non-pivoting LDL^T's tiny
+  /// pivot does not by itself mean that K is singular).
   double zero_pivot = 1e-12;
+  /// Eigenvalues of S K S within +-neutral_band count as zero (neutral directions: free
+  /// rigid-body motion, a mechanism, the onset of buckling).
+  double neutral_band = 1e-8;
 };
 
 struct Stability {
+  bool assessed = true;   ///< false: the test could not be made (summary says why)
   bool stable = false;    ///< the tangent is positive definite: a strict local minimum
-  bool singular = false;  ///< a zero pivot: neutral directions (unsupported, or a mechanism)
-  /// Negative eigenvalues of the tangent (0 when stable; -1 when not counted or singular).
+  bool singular = false;  ///< eigenvalues near zero (neutral_band): neutral directions
+  /// Negative eigenvalues of the tangent beyond the neutral band (0 when stable; -1 when not
+  /// counted or not assessed).
   int negative_modes = -1;
   std::string summary;    ///< one sentence for a report, e.g. "stable equilibrium ..."
 };
@@ -44,12 +51,13 @@ struct UnstableMode {
 };
 
 /// Finds a direction of negative curvature by inverse iteration with the Levenberg-Marquardt
-/// shifted tangent K + mu diag|K| (mu the smallest of 1e-4, 1e-3, ... that makes it positive
-/// definite): the iteration amplifies the components along the most negative eigenvalues of K
-/// most, so after a few back-substitutions the Rayleigh quotient v^T K v is negative. The
-/// start vector is a fixed pseudo-random sequence (the result is deterministic). Cost: a few
-/// Cholesky factorisations plus `iterations` back-substitutions and sparse products.
-/// nullopt when K is positive definite or no negative curvature was found.
+/// shifted tangent K + mu diag|K|, mu just above the smallest shift that makes it positive
+/// definite (bracketed by decades from 1e-12 to 1e4, then bisected): the iteration amplifies
+/// the components along the most negative eigenvalues of K most, so the Rayleigh quotient
+/// v^T K v comes out negative. The start vector is a fixed pseudo-random sequence (the result
+/// is deterministic). Cost: up to about 15 Cholesky factorisations (typically 8) plus
+/// `iterations` back-substitutions and one sparse product. nullopt when K is positive definite
+/// or no negative curvature was found.
 std::optional<UnstableMode> unstable_mode(const ShellSystem& sys, const ShellState& state,
                                           double lambda = 1.0, int iterations = 30,
                                           SolverWorkspace* workspace = nullptr);
@@ -59,7 +67,8 @@ std::optional<UnstableMode> unstable_mode(const ShellSystem& sys, const ShellSta
 /// assembler's pattern and its Cholmod solver with the symbolic factorisation (one is made in
 /// it if it holds another kind). Cost: one
 /// tangent assembly and one Cholesky factorisation (plus one LDL^T when unstable and
-/// count_modes). Throws InvalidArgument for invalid parameters.
+/// count_modes, three where pivots come out tiny). Throws InvalidArgument for invalid
+/// parameters.
 Stability check_stability(const ShellSystem& sys, const ShellState& state,
                           const StabilityParams& params = {}, SolverWorkspace* workspace = nullptr);
 

@@ -64,13 +64,14 @@ struct RelaxationParams {
   /// (check_stability: one more tangent and Cholesky factorisation, and an LDL^T count of the
   /// unstable modes if it is not). Needs supports (the settling solve runs only then).
   bool check_stability = true;
-  /// With check_stability, when the settled shape is not a stable equilibrium (a symmetric
-  /// configuration held on an unstable branch, e.g. a wall compressed but perfectly flat,
-  /// which nothing in the energy pushes sideways): perturb it along a direction of negative
-  /// curvature (unstable_mode; by a fifth of the mean rest edge length at most, the sign that
-  /// lowers the potential) and settle again, at most this often, >= 0. The result is the
-  /// shape the tissue would buckle into (of mirror-image shapes, the one the perturbation
-  /// picks). 0: only report.
+  /// With check_stability and the Cholmod solver, when the settled shape has unstable modes (a
+  /// symmetric configuration held on an unstable branch, e.g. a wall compressed but perfectly
+  /// flat, which nothing in the energy pushes sideways): perturb it along a direction of
+  /// negative curvature (unstable_mode; by at most a fifth of the mean rest edge length and
+  /// 0.1 rad, the sign that lowers the potential) and settle again, at most this often, >= 0.
+  /// The result is the shape the tissue would buckle into (of mirror-image shapes, the one the
+  /// perturbation picks). Each escape is reported to the hook as phase "escape". 0: only
+  /// report.
   int max_escapes = 3;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
@@ -82,7 +83,7 @@ struct RelaxationProgress {
   int steps = 0;           ///< planned (static: done + what the current increment size needs)
   double residual = 0.0;   ///< |r| over free DOFs (static residual)
   double energy = 0.0;     ///< strain energy, N*mm
-  std::string phase;       ///< "relax" or "settle"
+  std::string phase;       ///< "relax", "settle" or "escape"
   int newton_iterations = 0;  ///< Newton iterations of this increment or step (retries included)
 };
 /// Called after every increment/step; return false to cancel (the state is kept as it is).
