@@ -7,6 +7,7 @@
 #include "replay_run.hpp"
 #include "sutura/app/simulation.hpp"
 #include "sutura/engine/sim/selection.hpp"
+#include "sutura/engine/sim/stability.hpp"
 
 namespace sutura::app::detail {
 
@@ -25,27 +26,38 @@ void commit_pending_loads(SceneObject& o) {
   o.sim.pending_factor = 0.0;
 }
 
-// What a surgeon must be told about the relaxed shape beyond the numbers: that it is not a
-// stable equilibrium (a small disturbance would carry it off, e.g. buckle a wall that came to
-// rest compressed but symmetric), so the measurements describe a shape the vessel would not
-// keep; or that it is marginal, or could not be assessed. Empty when the shape is stable or
-// was not checked. (Indefinite tangents met on the way
-// are not warned about: they occur at trial iterates of ordinary runs, a stretched pair of
-// strips included.)
-std::string equilibrium_warning(const engine::RelaxationResult& r) {
-  if (!r.stability || r.stability->stable) return {};
-  const engine::Stability& st = *r.stability;
-  if (!st.assessed) return "the stability of the relaxed shape could not be assessed (" + st.summary + ")";
+// What a surgeon must be told about a simulated shape (`what`) beyond the numbers: that it is
+// not a stable equilibrium (a small disturbance would carry it off, e.g. buckle a wall that
+// came to rest compressed but symmetric), so the measurements describe a shape the vessel
+// would not keep; or that it is marginal, or could not be assessed. Empty when stable.
+// (Indefinite tangents met on the way are not warned about: they occur at trial iterates of
+// ordinary runs, a stretched pair of strips included.) tests/CMakeLists.txt matches these
+// sentences to fail a bundled replay.
+std::string stability_warning(const engine::Stability& st, const std::string& what) {
+  if (st.stable) return {};
+  if (!st.assessed) return "the stability of the " + what + " could not be assessed (" + st.summary + ")";
   if (st.negative_modes == 0)
-    return "the relaxed shape is at the limit of stability (" + st.summary +
+    return "the " + what + " is at the limit of stability (" + st.summary +
            "); a small disturbance may change it, so read its measurements with care";
-  std::string w = "the relaxed shape is not a stable equilibrium (" + st.summary +
-                  "); the vessel would not keep this shape, so its measurements are not a "
-                  "prediction";
-  if (r.escapes > 0)
+  return "the " + what + " is not a stable equilibrium (" + st.summary +
+         "); the vessel would not keep this shape, so its measurements are not a prediction";
+}
+
+std::string equilibrium_warning(const engine::RelaxationResult& r) {
+  if (!r.stability) return {};
+  std::string w = stability_warning(*r.stability, "relaxed shape");
+  if (!w.empty() && r.escapes > 0)
     w += " (perturbed along an unstable mode and settled again " + std::to_string(r.escapes) +
          " times without reaching a stable shape)";
   return w;
+}
+
+json stability_json(const engine::Stability& st) {
+  return {{"assessed", st.assessed},
+          {"stable", st.stable},
+          {"singular", st.singular},
+          {"negative_modes", st.negative_modes},
+          {"summary", st.summary}};
 }
 
 }  // namespace
@@ -182,9 +194,17 @@ json Run::execute(const SolveOp& op) {
     else o->sim.pending_factor = r.lambda_reached;
   }
   if (!r.converged) throw std::runtime_error(r.message);
-  return {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},
-          {"residual", r.residual}, {"energy", r.energy}, {"load_factor", r.lambda_reached},
-          {"history", history}};
+  json out = {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},
+              {"residual", r.residual}, {"energy", r.energy}, {"load_factor", r.lambda_reached},
+              {"history", history}};
+  if (op.check_stability) {
+    engine::StabilityParams sp;
+    sp.lambda = r.lambda_reached;
+    const engine::Stability st = engine::check_stability(merged.system(), merged.state(), sp);
+    out["equilibrium"] = stability_json(st);
+    if (const std::string w = stability_warning(st, "solved shape"); !w.empty()) out["warning"] = w;
+  }
+  return out;
 }
 
 json Run::execute(const SimulateOp& op) {
@@ -275,12 +295,8 @@ json Run::relax(const SimulateOp& op) {
               {"energy", r.energy},
               {"history", history}};
   if (r.stability) {
-    out["equilibrium"] = {{"assessed", r.stability->assessed},
-                          {"stable", r.stability->stable},
-                          {"singular", r.stability->singular},
-                          {"negative_modes", r.stability->negative_modes},
-                          {"summary", r.stability->summary},
-                          {"escapes", r.escapes}};
+    out["equilibrium"] = stability_json(*r.stability);
+    out["equilibrium"]["escapes"] = r.escapes;
     if (r.stability_before_escapes) {
       out["equilibrium"]["before_escapes"] = {
           {"negative_modes", r.stability_before_escapes->negative_modes},

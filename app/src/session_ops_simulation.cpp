@@ -149,6 +149,9 @@ SolveOp parse_solve(Fields& f) {
   p.line_search = f.optional_bool("line_search", p.line_search);
   p.linear_solver = linear_solver(f, p.linear_solver);
   p.linear = f.optional_choice("analysis", "nonlinear", {"nonlinear", "linear"}) == "linear";
+  op.check_stability = f.optional_bool("check_stability", op.check_stability);
+  if (op.check_stability && p.linear)
+    f.fail("check_stability", "needs the nonlinear analysis (a linear one has no equilibrium state to test)");
   return op;
 }
 

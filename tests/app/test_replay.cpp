@@ -258,3 +258,47 @@ TEST(Replay, SimulationOpsProduceProbesAndChecks) {
   EXPECT_TRUE(found);
   fs::remove_all(out);
 }
+
+TEST(Replay, SolveReportsWhetherTheStateIsAStableEquilibrium) {
+  // The Sze strip (EI = 100, L = 10) clamped at x = 0 and compressed along its axis by a dead
+  // line load: below Euler's P_1 = pi^2 EI / (4 L^2) = 2.47 the straight state is stable,
+  // above it has one unstable mode, which the solve reports and warns about (it stays
+  // straight: nothing pushes it sideways, and a solve never changes the state for the test).
+  const auto session = [](double P) {
+    std::ostringstream s;
+    s << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+      << "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 1, "
+         "\"segments_length\": 32, \"segments_width\": 2}\n"
+      << "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.2e6, \"poisson_ratio\": 0, "
+         "\"thickness\": 0.1}\n"
+      << "{\"op\": \"constrain\", \"object\": \"s\", \"plane\": {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}, "
+         "\"dofs\": [\"all\"]}\n"
+      << "{\"op\": \"line_load\", \"object\": \"s\", \"plane\": {\"point\": [10, 0, 0], \"normal\": [1, 0, 0]}, "
+         "\"force_per_length\": [" << -P << ", 0, 0]}\n"
+      << "{\"op\": \"solve\", \"check_stability\": true}\n";
+    return s.str();
+  };
+  for (const double P : {2.0, 3.0}) {
+    fs::path dir = fresh_dir("euler");
+    std::ofstream(dir / "s.jsonl") << session(P);
+    std::ostringstream progress;
+    ReplayOptions o;
+    o.out_dir = dir / "out";
+    o.progress = &progress;
+    const ReplayResult r = replay(load_session(dir / "s.jsonl"), o);
+    const nlohmann::json solve = r.report.at("actions").back();
+    ASSERT_EQ(solve.at("op"), "solve");
+    const nlohmann::json eq = solve.at("equilibrium");
+    if (P < 2.47) {
+      EXPECT_TRUE(eq.at("stable").get<bool>()) << eq.dump();
+      EXPECT_FALSE(solve.contains("warning"));
+    } else {
+      EXPECT_FALSE(eq.at("stable").get<bool>());
+      EXPECT_EQ(eq.at("negative_modes").get<int>(), 1);
+      EXPECT_NE(solve.at("warning").get<std::string>().find("solved shape is not a stable equilibrium"),
+                std::string::npos);
+      EXPECT_NE(progress.str().find("warning: the solved shape"), std::string::npos) << progress.str();
+    }
+    fs::remove_all(dir);
+  }
+}

@@ -164,6 +164,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
                           "\"settle_steps\": 30}}\n",
                 2, "relax.settle_steps", "no effect"},
+        BadCase{kHeader + "{\"op\": \"solve\", \"analysis\": \"linear\", \"check_stability\": true}\n",
+                2, "check_stability", "nonlinear"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"max_escapes\": -1}}\n", 2,
                 "relax.max_escapes", "between"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"check_stability\": 1}}\n", 2,

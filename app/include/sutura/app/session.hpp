@@ -176,6 +176,9 @@ struct SolveOp {
   double load_factor = 1.0;  ///< fraction of the pending loads to reach, (0, 1]
   engine::StaticSolverParams params;
   bool collapse_barrier = false;  ///< add engine::AreaBarrier (defaults) to the system
+  /// After a converged nonlinear solve, test whether the state is a stable equilibrium
+  /// (engine::check_stability; reported, never changed).
+  bool check_stability = false;
 };
 
 /// Implicit dynamics of the named objects (all when empty).
