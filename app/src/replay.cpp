@@ -33,6 +33,8 @@ ReplayResult replay(const Session& session, const ReplayOptions& options) {
       *options.progress << " (" << std::fixed << std::setprecision(3)
                         << details["seconds"].get<double>() << " s)" << std::defaultfloat
                         << std::endl;
+      if (details.contains("values") && details["values"].contains("summary"))
+        *options.progress << "    " << details["values"]["summary"].get<std::string>() << std::endl;
       if (details.contains("warning"))
         *options.progress << "    warning: " << details["warning"].get<std::string>() << std::endl;
     }

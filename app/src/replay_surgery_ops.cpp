@@ -1,5 +1,6 @@
 // Execution of the surgery ops (incise, join, patch, resect, measure) and of undo/redo.
 #include <algorithm>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -245,6 +246,13 @@ json Run::execute(const MeasureOp& op) {
     j["before"] = section_json(before);
     j["after"] = section_json(after);
     j["area_change_percent"] = 100.0 * (after.area - before.area) / before.area;
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(2) << "cross-section area " << before.area
+      << " mm2 in the pre-operative shape -> " << after.area << " mm2 now ("
+      << std::showpos << std::setprecision(1) << j["area_change_percent"].get<double>()
+      << std::noshowpos << " %), equivalent diameter " << std::setprecision(2)
+      << before.equivalent_diameter << " -> " << after.equivalent_diameter << " mm";
+    j["summary"] = m.str();
   } else {
     engine::LumenProfileParams p;
     p.stations = op.stations;
@@ -269,6 +277,13 @@ json Run::execute(const MeasureOp& op) {
     const double b = j["before"]["min_area_mm2"].get<double>();
     const double a = j["after"]["min_area_mm2"].get<double>();
     j["min_area_change_percent"] = 100.0 * (a - b) / b;
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(2) << "minimum lumen area " << b
+      << " mm2 in the pre-operative shape -> " << a << " mm2 now (" << std::showpos
+      << std::setprecision(1) << j["min_area_change_percent"].get<double>() << std::noshowpos
+      << " %), at " << j["after"]["min_area_arc_length_mm"].get<double>()
+      << " mm along the centreline";
+    j["summary"] = m.str();
   }
   measurements[op.name] = j;
   return {{"measurement", op.name}, {"values", j}};

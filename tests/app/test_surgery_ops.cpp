@@ -206,6 +206,32 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
   EXPECT_FALSE(quiet.contains("warning"));
 }
 
+TEST(SurgeryOps, MeasurementsCarryAOneLineSummary) {
+  // The generated tube (R 4, 24 segments around) untouched: before and after agree, with the
+  // area of the inscribed 24-gon, 12 R^2 sin(2 pi / 24) = 49.69 mm^2.
+  const std::string text =
+      kHeader + kTube +
+      "{\"op\": \"measure\", \"object\": \"t\", \"name\": \"mid\", \"plane\": "
+      "{\"origin\": [0, 0, 10.2], \"normal\": [0, 0, 1]}}\n"
+      "{\"op\": \"measure\", \"object\": \"t\", \"name\": \"along\", \"centreline\": "
+      "[[0, 0, 2.2], [0, 0, 18.2]], \"stations\": 5}\n";
+  const fs::path dir = scratch("measure");
+  std::ostringstream progress;
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  o.progress = &progress;
+  const ReplayResult r = replay(parse_session(text, dir / "s.jsonl"), o);
+  const nlohmann::json mid = r.report.at("measurements").at("mid");
+  EXPECT_NEAR(mid.at("after").at("area_mm2").get<double>(), 49.69, 0.01);
+  EXPECT_EQ(mid.at("summary").get<std::string>(),
+            "cross-section area 49.69 mm2 in the pre-operative shape -> 49.69 mm2 now (+0.0 %), "
+            "equivalent diameter 7.95 -> 7.95 mm");
+  const std::string along = r.report.at("measurements").at("along").at("summary").get<std::string>();
+  EXPECT_EQ(along.rfind("minimum lumen area 49.69 mm2 in the pre-operative shape -> 49.69 mm2 now", 0), 0u)
+      << along;
+  EXPECT_NE(progress.str().find("    " + along), std::string::npos) << progress.str();
+}
+
 TEST(SurgeryOps, JoiningSessionIsDeterministic) {
   const std::string text = two_strips_text();
   const ReplayResult a = run(text, "d1"), b = run(text, "d2");
