@@ -242,6 +242,8 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
   // subclavian flap 119 -> 96; resection 19 -> 18; resection with gusset 38 -> 47.
   ShellState prev;
   double s_prev = -1.0;
+  ShellState converged = state;  // the last converged state (at s), what a failure returns
+  const bool can_escape = p.check_stability && p.statics.linear_solver == LinearSolverKind::Cholmod;
   while (s < p.s_end - 1e-12) {
     // The last increment lands on s_end exactly (no round-off short of 1).
     const double s_next = s + ds >= p.s_end - 1e-9 ? p.s_end : s + ds;
@@ -259,7 +261,22 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     if (!r.converged) {
       state = good;
       rest = rest_at(y0, x0, s);
+      // An increment that started from an unstable equilibrium (a symmetric shape held on an
+      // unstable branch: the Levenberg-Marquardt iteration converges only linearly onto the
+      // saddle it stays on, measured: 3e-9 short of 1e-8 after 30 iterations on a flat
+      // compressed pair) is retried from the shape pushed downhill along an unstable mode
+      // before it is halved; such pushes count against max_escapes (escape_instability).
+      if (can_escape && result.escapes < p.max_escapes) {
+        const std::optional<UnstableMode> mode = unstable_mode(sys, state, 1.0, 30, &workspace);
+        if (mode && perturb_downhill(sys, state, *mode, 0.2 * mean_rest_edge(rest),
+                                     p.statics.min_area_ratio)) {
+          ++result.escapes;
+          s_prev = -1.0;  // the secant through a push predicts nothing
+          continue;
+        }
+      }
       if (ds <= ds_min * (1.0 + 1e-9)) {
+        state = converged;
         std::ostringstream m;
         m << "relaxation failed at s = " << s_next << ": " << r.message
           << "; rolled back to s = " << s;
@@ -277,6 +294,7 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     prev = good;
     s_prev = s;
     s = s_next;
+    converged = state;
     result.s_reached = s;
     result.residual = r.residual;
     result.energy = r.energy;

@@ -70,8 +70,10 @@ struct RelaxationParams {
   /// negative curvature (unstable_mode; by at most a fifth of the mean rest edge length and
   /// 0.1 rad, the sign that lowers the potential) and settle again, at most this often, >= 0.
   /// The result is the shape the tissue would buckle into (of mirror-image shapes, the one the
-  /// perturbation picks). Each escape is reported to the hook as phase "escape". 0: only
-  /// report.
+  /// perturbation picks). Each escape is reported to the hook as phase "escape". A static
+  /// increment that fails from an unstable start (converging onto the saddle only linearly) is
+  /// likewise retried from the pushed shape before it is halved; those pushes count too. 0:
+  /// only report.
   int max_escapes = 3;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
@@ -104,8 +106,9 @@ struct RelaxationResult {
   double energy = 0.0;
   /// The final shape's stability (check_stability), when checked: after a settling solve.
   std::optional<Stability> stability;
-  /// How often an unstable settled shape was perturbed along an unstable mode and settled
-  /// again (max_escapes), and the stability found before the first such perturbation.
+  /// How often an unstable shape was pushed along an unstable mode (max_escapes: a failed
+  /// increment's start, or the settled shape), and the stability the final check found before
+  /// the first push of the settled shape (unset when that was stable at once).
   int escapes = 0;
   std::optional<Stability> stability_before_escapes;
   std::vector<RelaxationProgress> history;
