@@ -50,6 +50,7 @@ void finish_worker(GuiState& s) {
   if (outcome->ok) {
     s.stages.simulation_finished();
     const nlohmann::json& d = outcome->details;
+    s.last_equilibrium = d.value("equilibrium", nlohmann::json());
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", d.value("seconds", 0.0));
     std::string text = outcome->op + " finished in " + seconds + " s";

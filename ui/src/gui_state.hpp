@@ -97,6 +97,8 @@ struct GuiState {
   std::optional<engine::Vec3> plane_origin;
   int plane_axis = 2;  ///< 0 x, 1 y, 2 z: normal of the cross-section plane
   nlohmann::json last_measure;
+  /// The last finished run's `equilibrium` report (null: none checked, e.g. plain dynamics).
+  nlohmann::json last_equilibrium;
   int measure_count = 0;
   char snapshot_file[128] = "gui_snapshot.png";
   char export_file[128] = "meshes/result.obj";

@@ -1,6 +1,7 @@
 // The Inspect section: before/after, colour maps, cross-section, snapshot, export, continue.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "panels.hpp"
 
@@ -81,9 +82,28 @@ void cross_section_controls(GuiState& s) {
   if (!s.last_measure.is_null()) measurement_table(s.last_measure);
 }
 
+// Whether the simulated shape is a stable equilibrium (the relaxation's check), in colour,
+// with the full sentence as a tooltip.
+void equilibrium_line(const nlohmann::json& eq) {
+  const bool stable = eq.value("stable", false);
+  const int modes = eq.value("negative_modes", -1);
+  char text[160];
+  if (stable) std::snprintf(text, sizeof text, "Equilibrium: stable");
+  else if (modes > 0) std::snprintf(text, sizeof text, "Equilibrium: NOT stable (%d unstable mode%s)", modes, modes > 1 ? "s" : "");
+  else std::snprintf(text, sizeof text, "Equilibrium: marginal or not assessed");
+  ImGui::TextColored(stable ? ImVec4(0.1f, 0.55f, 0.2f, 1.0f) : ImVec4(0.8f, 0.1f, 0.1f, 1.0f), "%s", text);
+  std::string tip = eq.value("summary", std::string());
+  if (const int escapes = eq.value("escapes", 0); escapes > 0)
+    tip += "\nPushed off an unstable equilibrium " + std::to_string(escapes) +
+           " time(s) along an unstable mode and settled again.";
+  if (!tip.empty()) tooltip_for_last_item(tip);
+}
+
 }  // namespace
 
 void inspect_section(GuiState& s) {
+  if (s.stages.stage() == Stage::Inspect && s.last_equilibrium.is_object())
+    equilibrium_line(s.last_equilibrium);
   const auto why_view = s.why_not(Action::ToggleBeforeAfter);
   ImGui::BeginDisabled(why_view.has_value());
   noted_checkbox(s.widgets, "Show before", &s.show_before);
