@@ -54,7 +54,7 @@ void finish_worker(GuiState& s) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", d.value("seconds", 0.0));
     std::string text = outcome->op + " finished in " + seconds + " s";
-    if (d.contains("equilibrium") && d["equilibrium"].value("stable", false))
+    if (s.last_equilibrium.is_object() && s.last_equilibrium.value("stable", false))
       text += "; the relaxed shape is a stable equilibrium";
     s.info(text);
     // An unstable end state stays on screen until dismissed, like an error.

@@ -150,4 +150,11 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const Pc
   throw InvalidArgument("unknown linear solver kind");
 }
 
+Eigen::SparseMatrix<double> shift_diagonal(const Eigen::SparseMatrix<double>& A,
+                                           const Eigen::VectorXd& scale, double mu) {
+  Eigen::SparseMatrix<double> out = A;
+  for (Eigen::Index i = 0; i < out.rows(); ++i) out.coeffRef(i, i) += mu * scale[i];
+  return out;
+}
+
 }  // namespace sutura::engine

@@ -33,13 +33,6 @@ Inertia inertia(const SpMat& A, double tiny) {
   return out;
 }
 
-// K + mu diag(scale): the Levenberg-Marquardt shift (mu > 0) or its mirror (mu < 0).
-SpMat shifted(const SpMat& K, const Eigen::VectorXd& scale, double mu) {
-  SpMat out = K;
-  for (Eigen::Index i = 0; i < out.rows(); ++i) out.coeffRef(i, i) += mu * scale[i];
-  return out;
-}
-
 }  // namespace
 
 Stability check_stability(const ShellSystem& sys, const ShellState& state,
@@ -93,8 +86,8 @@ Stability check_stability(const ShellSystem& sys, const ShellState& state,
   const Inertia direct = inertia(scaled, tiny);
   int negative = direct.negative, neutral = 0;
   if (!direct.ok || direct.tiny > 0 || direct.negative == 0) {
-    const Inertia plus = inertia(shifted(scaled, ones, params.neutral_band), tiny);
-    const Inertia minus = inertia(shifted(scaled, ones, -params.neutral_band), tiny);
+    const Inertia plus = inertia(shift_diagonal(scaled, ones, params.neutral_band), tiny);
+    const Inertia minus = inertia(shift_diagonal(scaled, ones, -params.neutral_band), tiny);
     if (!plus.ok || !minus.ok || plus.tiny > 0 || minus.tiny > 0) {
       out.assessed = false;
       out.summary = "not assessed: the tangent stiffness and its shifts have zero pivots";
@@ -135,7 +128,7 @@ std::optional<UnstableMode> unstable_mode(const ShellSystem& sys, const ShellSta
   if (solver.factorize_definite(K)) return std::nullopt;
   const Eigen::VectorXd diag = K.diagonal().cwiseAbs().cwiseMax(1e-300);
   const auto factorize_shifted = [&](double mu) {
-    return solver.factorize_definite(shifted(K, diag, mu));
+    return solver.factorize_definite(shift_diagonal(K, diag, mu));
   };
   // Inverse iteration converges as the ratio of the two smallest eigenvalues of the shifted
   // matrix, so the shift is brought close to the smallest that makes it definite, mu* (where

@@ -102,9 +102,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
         const Eigen::VectorXd diag = ev.tangent.diagonal().cwiseAbs().cwiseMax(1e-300);
         for (double mu = lm_shift > 0.0 ? std::max(1e-4, 0.1 * lm_shift) : 1e-4; mu <= 1e4;
              mu *= 10.0) {
-          Eigen::SparseMatrix<double> shifted = ev.tangent;
-          for (Eigen::Index i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += mu * diag[i];
-          factored = solver.factorize_definite(shifted);
+          factored = solver.factorize_definite(shift_diagonal(ev.tangent, diag, mu));
           if (factored) {
             lm_shift = mu;
             break;

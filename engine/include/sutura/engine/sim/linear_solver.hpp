@@ -48,4 +48,9 @@ class LinearSolver {
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const PcgParams& pcg = {});
 
+/// A + mu diag(scale): the Levenberg-Marquardt shift of a tangent (mu > 0; scale = |diag A|)
+/// or its mirror (mu < 0). A must store its whole diagonal (an assembled tangent does).
+Eigen::SparseMatrix<double> shift_diagonal(const Eigen::SparseMatrix<double>& A,
+                                           const Eigen::VectorXd& scale, double mu);
+
 }  // namespace sutura::engine
