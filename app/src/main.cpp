@@ -38,6 +38,9 @@ int run_replay(const std::string& session_file, const std::string& out_dir, bool
       if (p.s >= 0.0) std::cerr << ", s = " << p.s;
       if (p.residual >= 0.0) std::cerr << ", residual " << p.residual << " N";
       if (p.newton_iterations >= 0) std::cerr << ", " << p.newton_iterations << " Newton iterations";
+      if (p.quasi_newton_iterations > 0)
+        std::cerr << (p.newton_iterations >= 0 ? " + " : ", ") << p.quasi_newton_iterations
+                  << " quasi-Newton steps";
       std::cerr << std::flush;
       return true;
     };

@@ -63,7 +63,8 @@ struct Run {
   /// relaxation its s, residual and Newton iterations) to options.on_progress; false when the caller asks to cancel.
   bool report_progress(const std::string& phase, int step, int steps, const MergedSystem& merged,
                        const std::vector<engine::Vec3>& x, double s = -1.0,
-                       double residual = -1.0, int newton_iterations = -1);
+                       double residual = -1.0, int newton_iterations = -1,
+                       int quasi_newton_iterations = 0);
   json execute(const ProbeOp& op);
   json execute(const CheckOp& op);
 

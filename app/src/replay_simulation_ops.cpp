@@ -264,7 +264,8 @@ json Run::relax(const SimulateOp& op) {
   const engine::RelaxationHook hook = [&](const engine::RelaxationProgress& p) {
     cancelled =
         !report_progress(p.phase, p.step, p.steps, merged, merged.state().x, p.s, p.residual,
-                         params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1);
+                         params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1,
+                         p.quasi_newton_iterations);
     return !cancelled;
   };
   const engine::RelaxationResult r =
@@ -290,6 +291,7 @@ json Run::relax(const SimulateOp& op) {
               {"relaxation", params.solver == engine::RelaxationSolver::Static ? "static" : "dynamic"},
               {"s_reached", r.s_reached},
               {"newton_iterations", r.newton_iterations},
+              {"quasi_newton_iterations", r.quasi_newton_iterations},
               {"indefinite_iterations", r.indefinite_iterations},
               {"residual", r.residual},
               {"energy", r.energy},
@@ -309,7 +311,8 @@ json Run::relax(const SimulateOp& op) {
 
 bool Run::report_progress(const std::string& phase, int step, int steps,
                           const MergedSystem& merged, const std::vector<engine::Vec3>& x,
-                          double s, double residual, int newton_iterations) {
+                          double s, double residual, int newton_iterations,
+                          int quasi_newton_iterations) {
   if (!options.on_progress) return true;
   RunProgress p;
   p.phase = phase;
@@ -319,6 +322,7 @@ bool Run::report_progress(const std::string& phase, int step, int steps,
   p.s = s;
   p.residual = residual;
   p.newton_iterations = newton_iterations;
+  p.quasi_newton_iterations = quasi_newton_iterations;
   p.positions = merged.positions_by_object(x);
   return options.on_progress(p);
 }

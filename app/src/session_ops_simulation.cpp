@@ -189,6 +189,8 @@ SimulateOp parse_simulate(Fields& f) {
         r->optional_int("max_iterations", rp.statics.max_iterations, 1, 1000);
     rp.check_stability = r->optional_bool("check_stability", rp.check_stability);
     rp.max_escapes = r->optional_int("max_escapes", rp.max_escapes, 0, 100);
+    rp.statics.quasi_newton_steps =
+        r->optional_int("quasi_newton_steps", rp.statics.quasi_newton_steps, 0, 1000);
     rp.statics.linear_solver = p.linear_solver;
     rp.dynamics = p;
     r->finish();

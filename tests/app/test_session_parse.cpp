@@ -168,6 +168,8 @@ INSTANTIATE_TEST_SUITE_P(
                 2, "check_stability", "nonlinear"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"max_escapes\": -1}}\n", 2,
                 "relax.max_escapes", "between"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"quasi_newton_steps\": -3}}\n", 2,
+                "relax.quasi_newton_steps", "between"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"check_stability\": 1}}\n", 2,
                 "relax.check_stability", "true or false"},
         BadCase{kHeader + "{\"op\": \"check\", \"probe\": \"p\", \"quantity\": \"uz\", "

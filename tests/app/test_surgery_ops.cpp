@@ -176,9 +176,11 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
       "{\"op\": \"fix\", \"object\": \"s\", \"plane\": {\"point\": [19.9, 0, 0], \"normal\": [1, 0, 0]}}\n"
       "{\"op\": \"join\", \"object\": \"s\", \"chains\": [{\"from\": [10, -2, 0], \"to\": [10, 2, 0]}, "
       "{\"from\": [9.9, 2, 0], \"to\": [9.9, -2, 0]}]}\n";
+  // Newton steps only: every iterate's tangent is factorised, so the indefinite ones are
+  // counted (quasi-Newton steps reuse an older factorisation).
   const std::string relax =
       "{\"op\": \"simulate\", \"relax\": {\"steps\": 4, \"tolerance\": 1e-6, "
-      "\"max_escapes\": 0}}\n";
+      "\"max_escapes\": 0, \"quasi_newton_steps\": 0}}\n";
   const ReplayResult flat = run(compressed + relax, "unstable");
   EXPECT_EQ(flat.report.at("status"), "ok");
   const auto& sim = flat.report.at("actions").back();
@@ -186,6 +188,7 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
   EXPECT_FALSE(sim.at("equilibrium").at("stable").get<bool>());
   EXPECT_EQ(sim.at("equilibrium").at("negative_modes").get<int>(), 6);
   EXPECT_GT(sim.at("indefinite_iterations").get<int>(), 0);
+  EXPECT_EQ(sim.at("quasi_newton_iterations").get<int>(), 0);
   ASSERT_TRUE(sim.contains("warning"));
   EXPECT_NE(sim.at("warning").get<std::string>().find("not a stable equilibrium"), std::string::npos);
   // By default the shape is perturbed along an unstable mode and settled again: it buckles
@@ -195,6 +198,7 @@ TEST(SurgeryOps, TheReportSaysWhetherTheRelaxedShapeIsAStableEquilibrium) {
   const nlohmann::json buckled = run(compressed + escaping, "escaped").report.at("actions").back();
   EXPECT_TRUE(buckled.at("equilibrium").at("stable").get<bool>());
   EXPECT_EQ(buckled.at("equilibrium").at("escapes").get<int>(), 1);
+  EXPECT_GT(buckled.at("quasi_newton_iterations").get<int>(), 0);
   EXPECT_EQ(buckled.at("equilibrium").at("before_escapes").at("negative_modes").get<int>(), 6);
   EXPECT_FALSE(buckled.contains("warning"));
   // The check can be switched off (it costs a factorisation, and an LDL^T when unstable).

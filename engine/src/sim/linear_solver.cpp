@@ -80,6 +80,7 @@ class CholmodSolver final : public LinearSolver {
     if (!cache_.same(A)) llt_.analyzePattern(A);
     llt_.factorize(A);
     use_fallback_ = llt_.info() != Eigen::Success;
+    id_ = use_fallback_ ? 0 : ++count_;
     if (!use_fallback_) return true;
     // Not positive definite (compression near buckling, or far from equilibrium): LDL^T
     // handles symmetric indefinite matrices with non-zero pivots.
@@ -91,13 +92,16 @@ class CholmodSolver final : public LinearSolver {
     if (!cache_.same(A)) llt_.analyzePattern(A);
     llt_.factorize(A);
     use_fallback_ = false;
-    if (llt_.info() == Eigen::Success) return true;
+    const bool ok = llt_.info() == Eigen::Success;
+    id_ = ok ? ++count_ : 0;
+    if (ok) return true;
     note_ = "cholmod: matrix not positive definite";
     return false;
   }
   bool factorize_indefinite(const SpMat& A) override {
     note_ = "cholmod: matrix not positive definite, used LDL^T";
     use_fallback_ = true;
+    id_ = 0;
     return fallback_.factorize(A);
   }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
@@ -107,12 +111,15 @@ class CholmodSolver final : public LinearSolver {
     return llt_.info() == Eigen::Success && x.allFinite();
   }
   [[nodiscard]] std::string last_note() const override { return note_; }
+  [[nodiscard]] std::uint64_t definite_factor_id() const override { return id_; }
 
  private:
   Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> llt_;
   LdltSolver fallback_;
   PatternCache cache_;
   bool use_fallback_ = false;
+  std::uint64_t count_ = 0;  ///< Cholesky factorisations that succeeded
+  std::uint64_t id_ = 0;     ///< definite_factor_id()
   std::string note_;
 };
 

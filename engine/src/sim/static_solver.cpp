@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "lbfgs.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -23,6 +24,7 @@ void check(const StaticSolverParams& p) {
   if (!(p.min_area_ratio >= 0.0 && p.min_area_ratio < 1.0))
     throw InvalidArgument("min_area_ratio must be in [0, 1)");
   if (!(p.energy_blowup > 1.0)) throw InvalidArgument("energy_blowup must be > 1");
+  if (p.quasi_newton_steps < 0) throw InvalidArgument("quasi_newton_steps must be >= 0");
 }
 
 // Only follower pressure adds a load stiffness (external_forces).
@@ -35,6 +37,33 @@ double characteristic_length(const ShellState& s) {
   Eigen::AlignedBox3d box;
   for (const auto& p : s.x) box.extend(p);
   return std::max(box.diagonal().norm(), 1e-12);
+}
+
+// A trial state that collapses a triangle further than the current state has (below
+// min_area_ratio of its rest area) counts as non-finite, so the line search backs off: the
+// floor for trials from `state` (0 = no test).
+double collapse_floor(const ShellSystem& sys, const ShellState& state,
+                      const StaticSolverParams& params) {
+  return params.min_area_ratio > 0.0
+             ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state))
+             : 0.0;
+}
+
+// The evaluation at `trial` = state + a du_full (with the tangent if asked); a trial below the
+// collapse floor gets a NaN energy and residual and sets `collapsed`.
+Evaluation evaluate_trial(const ShellSystem& sys, const DofMap& map, const ShellState& state,
+                          const Eigen::VectorXd& du_full, double a, double lambda,
+                          double area_floor, bool with_tangent, TangentAssembler* assembler,
+                          ShellState& trial, bool& collapsed) {
+  trial = state;
+  apply_increment(trial, a * du_full, sys.dofs_per_node());
+  Evaluation e = evaluate(sys, map, trial, lambda, with_tangent, true, assembler);
+  if (area_floor > 0.0 && min_area_ratio(sys.problem, trial) < area_floor) {
+    collapsed = true;
+    e.internal_energy = std::numeric_limits<double>::quiet_NaN();
+    e.residual.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return e;
 }
 
 // Newton iterations at a fixed load factor. Returns an empty string on convergence, else why
@@ -57,13 +86,11 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
                    const StaticSolverParams& params, LinearSolver& solver, double energy_scale,
                    StaticResult& result, TangentAssembler& assembler,
                    TangentAssembler& internal_assembler) {
-  const int d = sys.dofs_per_node();
   Evaluation ev = evaluate(sys, map, state, lambda, true, true, &assembler);
   const double ref =
       std::max({ev.external_norm, ev.residual.norm(), params.force_reference, 1e-300});
   double step_length = 1.0;
   double first_work = -1.0;
-  double lm_shift = 0.0;  // the Levenberg-Marquardt shift of the last iteration (0: none)
   int internal_steps = 0;  // consecutive steps with the internal-force tangent (below)
   bool collapsed_trial = false;  // a line-search trial was rejected for a collapsed triangle
   double work_done = 0.0;  // by the loads since the start of this load step (external_work)
@@ -88,28 +115,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
     }
     ++result.iterations;
     bool factored;
-    if (params.shift_indefinite && params.linear_solver == LinearSolverKind::Cholmod) {
-      // Levenberg-Marquardt: K + mu diag(K), mu grown tenfold until the Cholesky factorisation
-      // succeeds, gives a descent direction of the energy where K is indefinite (an energy-
-      // driven run passing an instability); plain Newton would head for a saddle. The search
-      // starts a decade below the last shift that worked: consecutive iterations of one
-      // instability need similar shifts, and each trial is a full factorisation.
-      factored = solver.factorize_definite(ev.tangent);
-      if (factored) {
-        lm_shift = 0.0;
-      } else {
-        ++result.indefinite_iterations;
-        const Eigen::VectorXd diag = ev.tangent.diagonal().cwiseAbs().cwiseMax(1e-300);
-        for (double mu = lm_shift > 0.0 ? std::max(1e-4, 0.1 * lm_shift) : 1e-4; mu <= 1e4;
-             mu *= 10.0) {
-          factored = solver.factorize_definite(shift_diagonal(ev.tangent, diag, mu));
-          if (factored) {
-            lm_shift = mu;
-            break;
-          }
-        }
-      }
-    } else if (params.linear_solver == LinearSolverKind::Cholmod) {
+    if (params.linear_solver == LinearSolverKind::Cholmod) {
       // A follower pressure on a still unstressed shell (the first iteration of an inflation)
       // makes the tangent indefinite through its load stiffness alone, until the hoop stress
       // builds up. The Newton step on it (LDL^T) heads for a saddle first; the step with the
@@ -145,22 +151,10 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
         std::abs(s0) <= params.tolerance * params.tolerance * first_work && it > 0;
     const Eigen::VectorXd du_full = map.expand(du);
 
-    // A trial that collapses a triangle further than the current state has (below
-    // min_area_ratio of its rest area) counts as non-finite, so the line search backs off.
-    const double area_floor =
-        params.min_area_ratio > 0.0
-            ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state))
-            : 0.0;
+    const double area_floor = collapse_floor(sys, state, params);
     const auto trial_at = [&](double a, ShellState& trial) {
-      trial = state;
-      apply_increment(trial, a * du_full, d);
-      Evaluation e = evaluate(sys, map, trial, lambda, true, true, &assembler);
-      if (area_floor > 0.0 && min_area_ratio(sys.problem, trial) < area_floor) {
-        collapsed_trial = true;
-        e.internal_energy = std::numeric_limits<double>::quiet_NaN();
-        e.residual.setConstant(std::numeric_limits<double>::quiet_NaN());
-      }
-      return e;
+      return evaluate_trial(sys, map, state, du_full, a, lambda, area_floor, true, &assembler,
+                            trial, collapsed_trial);
     };
     ShellState trial;
     Evaluation ev_trial = trial_at(1.0, trial);
@@ -168,32 +162,8 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
     constexpr double kGrowthLimit = 1e3;
     const double r1 = ev_trial.residual.norm();
     const bool full_step_ok = std::isfinite(r1) && r1 <= kGrowthLimit * rnorm;
-    // An energy-minimising run (shifted tangent: the rest-shape relaxation, with or without
-    // pressure) decreases the total potential energy P = E - W (external_work), so there the
-    // plain merit applies: backtrack (quadratic model of P(a), Nocedal & Wright 3.5) until the
-    // Armijo condition P(a) <= P(0) + c a s0 holds. A full step far beyond an instability
-    // otherwise lands in a state of 100 times the energy, from which the iteration wanders
-    // (measured on an anastomosis at s = 0.35: no convergence in 30 iterations without the
-    // backtracking, 10 with it; on the pressurised fine arch, before the work term was counted,
-    // a step to 300 times the energy passed the residual test and two increments of s failed
-    // after 30 iterations each). Decreases below round-off (|s0| at 1e-12 E) are not tested.
-    const double e0 = ev.internal_energy;
     double trial_work = external_work(sys, state, trial, lambda);
-    if (params.line_search && params.shift_indefinite && !energy_converged && s0 < 0.0 &&
-        std::abs(s0) > 1e-12 * std::abs(e0)) {
-      constexpr double kArmijo = 1e-4;
-      double a = 1.0;
-      for (int search = 0; search < 12; ++search) {
-        const double ea = ev_trial.internal_energy - trial_work;
-        if (std::isfinite(ea) && ea <= e0 + kArmijo * a * s0) break;
-        const double curvature = std::isfinite(ea) ? ea - e0 - s0 * a : HUGE_VAL;
-        const double next = curvature > 0.0 ? -s0 * a * a / (2.0 * curvature) : 0.5 * a;
-        a = std::clamp(next, 0.1 * a, 0.5 * a);
-        ev_trial = trial_at(a, trial);
-        trial_work = external_work(sys, state, trial, lambda);
-      }
-      step_length = a;
-    } else if (params.line_search && !energy_converged && s0 < 0.0 && !full_step_ok) {
+    if (params.line_search && !energy_converged && s0 < 0.0 && !full_step_ok) {
       double a = 1.0, s_a = du.dot(ev_trial.residual);
       double best_a = a, best_s = std::isfinite(s_a) ? std::abs(s_a) : HUGE_VAL;
       ShellState best_state = trial;
@@ -229,6 +199,180 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
       result.energy = ev.internal_energy;
       return {};
     }
+  }
+}
+
+// Factorises K, or where it is not positive definite K + mu diag|K| (Levenberg-Marquardt), mu
+// grown tenfold from 1e-4 (or a decade below `lm_shift`, the last shift that worked) until
+// the Cholesky factorisation succeeds: a descent direction of the energy where K is indefinite
+// (an energy-driven run passing an instability), where plain Newton would head for a saddle.
+// Consecutive iterations of one instability need similar shifts, and each trial is a full
+// factorisation. Returns false if no shift up to 1e4 works.
+bool factorize_shifted(LinearSolver& solver, const Eigen::SparseMatrix<double>& K,
+                       double& lm_shift, bool coarse, StaticResult& result) {
+  if (solver.factorize_definite(K)) {
+    lm_shift = 0.0;
+    return true;
+  }
+  ++result.indefinite_iterations;
+  const Eigen::VectorXd diag = K.diagonal().cwiseAbs().cwiseMax(1e-300);
+  const double start = coarse ? std::max(1e-4, lm_shift) : std::max(1e-4, 0.1 * lm_shift);
+  for (double mu = start; mu <= 1e4; mu *= coarse ? 100.0 : 10.0) {
+    if (solver.factorize_definite(shift_diagonal(K, diag, mu))) {
+      lm_shift = mu;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Energy minimisation at a fixed load factor (shift_indefinite: the rest-shape relaxation).
+// With Cholmod, steps with a newly factorised tangent (factorize_shifted) alternate with
+// quasi-Newton steps that reuse the last factorisation as L-BFGS's initial inverse Hessian
+// (quasi_newton_steps; lbfgs.hpp); every step is a descent direction of the total potential
+// energy P = E - W (external_work), backtracked until the Armijo condition holds. The other
+// solvers, which cannot tell a definite matrix, take plain Newton steps. Returns an
+// empty string on convergence (then the factorisation is left in `ws` for the next solve),
+// else why it failed (the caller restores the state). Convergence as in newton().
+std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& state, double lambda,
+                     const StaticSolverParams& params, LinearSolver& solver, double energy_scale,
+                     StaticResult& result, SolverWorkspace& ws) {
+  // Measured on the patch aortoplasty, fine arch (docs/performance.md): depth 8 and a window
+  // of 4 steps over which the residual must halve.
+  constexpr int kDepth = 20;
+  constexpr std::size_t kWindow = 4;
+  const auto n = static_cast<Eigen::Index>(map.num_free());
+  const bool cholmod = params.linear_solver == LinearSolverKind::Cholmod;
+  const int qn_steps = cholmod ? params.quasi_newton_steps : 0;
+  // Without quasi-Newton steps every iterate needs its tangent: evaluate trials with it.
+  const bool trial_tangent = qn_steps == 0;
+  Evaluation ev = evaluate(sys, map, state, lambda, trial_tangent, true, &ws.assembler());
+  bool have_tangent = trial_tangent;
+  const double ref =
+      std::max({ev.external_norm, ev.residual.norm(), params.force_reference, 1e-300});
+  detail::LbfgsHistory lbfgs(kDepth);
+  // Residual norms since the factorisation in use (the first: where it was made); empty when
+  // the factorisation came from the previous solve.
+  std::vector<double> norms;
+  bool need_tangent = qn_steps == 0 || ws.reusable_factor == 0 || ws.reusable_size != n ||
+                      ws.reusable_factor != solver.definite_factor_id();
+  int newton_steps = 0, since_factor = 0;
+  double step_length = 1.0, first_work = -1.0, lm_shift = 0.0, work_done = 0.0;
+  bool collapsed_trial = false;
+  const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) { return solver.solve(q, z); };
+  for (int it = 0;; ++it) {
+    const double rnorm = ev.residual.norm();
+    if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
+      return collapsed_trial ? "every trial step collapsed a triangle (area below " +
+                                   std::to_string(params.min_area_ratio) + " of its rest area)"
+                             : "the state became non-finite (NaN/inf)";
+    if (ev.internal_energy > params.energy_blowup * energy_scale)
+      return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
+    result.history.push_back(
+        {lambda, it, rnorm, ev.internal_energy, step_length, ev.internal_energy - work_done});
+    result.residual = rnorm;
+    result.energy = ev.internal_energy;
+    if (rnorm <= params.tolerance * ref) {
+      ws.reusable_factor = solver.definite_factor_id();
+      ws.reusable_size = n;
+      return {};
+    }
+    if ((need_tangent && newton_steps == params.max_iterations) ||
+        it == params.max_iterations * (qn_steps + 1)) {
+      std::ostringstream m;
+      m << "no convergence in " << newton_steps << " Newton iterations";
+      if (it > newton_steps) m << " and " << it - newton_steps << " quasi-Newton steps";
+      m << " (residual " << rnorm << ", needed " << params.tolerance * ref << ")";
+      return m.str();
+    }
+    // The step: Newton (Levenberg-Marquardt) on a new tangent, or quasi-Newton on the last
+    // factorisation; a quasi-Newton direction that is not one of descent (round-off in the
+    // pairs) is replaced by a Newton step.
+    Eigen::VectorXd du;
+    bool fresh = false;
+    for (;;) {
+      if (need_tangent) {
+        if (!have_tangent) ev = evaluate(sys, map, state, lambda, true, true, &ws.assembler());
+        ++result.iterations;
+        ++newton_steps;
+        if (!(cholmod ? factorize_shifted(solver, ev.tangent, lm_shift, qn_steps > 0, result)
+                      : solver.factorize(ev.tangent)))
+          return "the tangent stiffness is singular (is the structure constrained?)";
+        lbfgs.clear();
+        norms.assign(1, ev.residual.norm());
+        since_factor = 0;
+        fresh = true;
+        need_tangent = false;
+      }
+      const bool solved = lbfgs.apply(-ev.residual, du, h0);
+      if (fresh && !solved) return "the linear solve failed: " + solver.last_note();
+      if (fresh || (solved && du.dot(ev.residual) < 0.0)) break;
+      need_tangent = true;
+    }
+    if (!fresh) {
+      ++result.quasi_newton_iterations;
+      ++since_factor;
+    }
+    const double s0 = du.dot(ev.residual);
+    if (first_work < 0.0) first_work = std::abs(s0);
+    // The energy criterion only on a Newton step: a quasi-Newton direction's du . r depends
+    // on how well the old factorisation still fits.
+    const bool energy_converged =
+        fresh && std::abs(s0) <= params.tolerance * params.tolerance * first_work && it > 0;
+    const Eigen::VectorXd du_full = map.expand(du);
+    const double area_floor = collapse_floor(sys, state, params);
+    const auto trial_at = [&](double a, ShellState& trial) {
+      return evaluate_trial(sys, map, state, du_full, a, lambda, area_floor, trial_tangent,
+                            &ws.assembler(), trial, collapsed_trial);
+    };
+    ShellState trial;
+    Evaluation ev_trial = trial_at(1.0, trial);
+    step_length = 1.0;
+    // Backtracking (quadratic model of P(a), Nocedal & Wright 3.5) until the Armijo condition
+    // P(a) <= P(0) + c a s0 holds. A full step far beyond an instability otherwise lands in a
+    // state of 100 times the energy, from which the iteration wanders (measured on an
+    // anastomosis at s = 0.35: no convergence in 30 iterations without the backtracking, 10
+    // with it; on the pressurised fine arch, before the work term was counted, a step to 300
+    // times the energy passed the residual test and two increments of s failed after 30
+    // iterations each). Decreases below round-off (|s0| at 1e-12 E) are not tested.
+    const double e0 = ev.internal_energy;
+    double trial_work = external_work(sys, state, trial, lambda);
+    if (params.line_search && !energy_converged && s0 < 0.0 &&
+        std::abs(s0) > 1e-12 * std::abs(e0)) {
+      constexpr double kArmijo = 1e-4;
+      double a = 1.0;
+      for (int search = 0; search < 12; ++search) {
+        const double ea = ev_trial.internal_energy - trial_work;
+        if (std::isfinite(ea) && ea <= e0 + kArmijo * a * s0) break;
+        const double curvature = std::isfinite(ea) ? ea - e0 - s0 * a : HUGE_VAL;
+        const double next = curvature > 0.0 ? -s0 * a * a / (2.0 * curvature) : 0.5 * a;
+        a = std::clamp(next, 0.1 * a, 0.5 * a);
+        ev_trial = trial_at(a, trial);
+        trial_work = external_work(sys, state, trial, lambda);
+      }
+      step_length = a;
+    }
+    work_done += trial_work;
+    if (qn_steps > 0 && std::isfinite(ev_trial.residual.norm()))
+      lbfgs.add(step_length * du, ev_trial.residual - ev.residual);
+    state = std::move(trial);
+    ev = std::move(ev_trial);
+    have_tangent = trial_tangent;
+    if (energy_converged) {
+      result.history.push_back({lambda, it + 1, ev.residual.norm(), ev.internal_energy, 1.0,
+                                ev.internal_energy - work_done});
+      result.residual = ev.residual.norm();
+      result.energy = ev.internal_energy;
+      ws.reusable_factor = solver.definite_factor_id();
+      ws.reusable_size = n;
+      return {};
+    }
+    // A new tangent when the last one has served its count, when a quasi-Newton step had to
+    // be cut short, or when the residual has not halved over the last kWindow steps.
+    norms.push_back(ev.residual.norm());
+    const std::size_t k = norms.size();
+    need_tangent = qn_steps == 0 || since_factor >= qn_steps ||
+                   (k > kWindow && norms[k - 1] > 0.5 * norms[k - 1 - kWindow]);
   }
 }
 
@@ -274,6 +418,17 @@ LinearSolver& SolverWorkspace::solver(LinearSolverKind kind, const PcgParams& pc
   return *solver_;
 }
 
+bool factorize_for_quasi_newton(const ShellSystem& sys, const ShellState& state, double lambda,
+                                SolverWorkspace& workspace) {
+  const DofMap map(sys);
+  LinearSolver& solver = workspace.solver(LinearSolverKind::Cholmod, {});
+  const Evaluation ev = evaluate(sys, map, state, lambda, true, true, &workspace.assembler());
+  if (!solver.factorize_definite(ev.tangent)) return false;
+  workspace.reusable_factor = solver.definite_factor_id();
+  workspace.reusable_size = static_cast<Eigen::Index>(map.num_free());
+  return true;
+}
+
 StaticResult solve_static(const ShellSystem& sys, ShellState& state, const StaticSolverParams& params,
                           SolverWorkspace* workspace) {
   check(params);
@@ -312,8 +467,10 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
     const double t = std::min(1.0, t_done + dt);
     const double lambda = lambda_at(t);
     const std::string why =
-        newton(sys, map, state, lambda, params, solver, energy_scale, result, assembler,
-               ws.internal_assembler());
+        params.shift_indefinite
+            ? minimize(sys, map, state, lambda, params, solver, energy_scale, result, ws)
+            : newton(sys, map, state, lambda, params, solver, energy_scale, result, assembler,
+                     ws.internal_assembler());
     if (why.empty()) {
       t_done = t;
       good = state;

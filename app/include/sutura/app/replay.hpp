@@ -26,6 +26,7 @@ struct RunProgress {
   double s = -1.0;         ///< relaxation parameter reached, [0, 1]; -1 for plain dynamics
   double residual = -1.0;  ///< static residual |r| over free DOFs, N; -1 when not computed
   int newton_iterations = -1;  ///< of the last relaxation increment; -1 when not counted
+  int quasi_newton_iterations = 0;  ///< of the last relaxation increment (reused factorisations)
   /// Current positions of every object the op simulates, by name; the spans are valid only
   /// during the callback (copy what you keep).
   std::vector<std::pair<std::string, std::span<const engine::Vec3>>> positions;

@@ -7,6 +7,7 @@
 //  - Ldlt: Eigen's simplicial LDL^T (no external dependency).
 //  - Pcg: preconditioned conjugate gradient (the paper's choice, Sec. 2.1), incomplete
 //    Cholesky preconditioner.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -42,6 +43,12 @@ class LinearSolver {
   virtual bool factorize_indefinite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
   /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// Identifies the current factorisation when it is a Cholesky factorisation of a positive
+  /// definite matrix (a new number for every factorisation), 0 otherwise: none yet, a failed
+  /// attempt, an indefinite fallback, or a solver that cannot tell. A caller that keeps
+  /// solving with an older factorisation (the static solver's quasi-Newton steps) checks with
+  /// it that nobody has factorised another matrix since.
+  [[nodiscard]] virtual std::uint64_t definite_factor_id() const { return 0; }
   /// What happened in the last call, e.g. "cholmod fell back to LDL^T (not positive definite)".
   [[nodiscard]] virtual std::string last_note() const { return {}; }
 };

@@ -87,6 +87,7 @@ struct RelaxationProgress {
   double energy = 0.0;     ///< strain energy, N*mm
   std::string phase;       ///< "relax", "settle" or "escape"
   int newton_iterations = 0;  ///< Newton iterations of this increment or step (retries included)
+  int quasi_newton_iterations = 0;  ///< static: quasi-Newton steps of this increment (StaticResult)
 };
 /// Called after every increment/step; return false to cancel (the state is kept as it is).
 using RelaxationHook = std::function<bool(const RelaxationProgress&)>;
@@ -96,6 +97,9 @@ struct RelaxationResult {
   bool cancelled = false;
   double s_reached = 0.0;
   int newton_iterations = 0;
+  /// Static: steps that reused a factorisation (StaticSolverParams::quasi_newton_steps), in
+  /// the increments, the settling and the escapes; newton_iterations counts the others.
+  int quasi_newton_iterations = 0;
   /// Newton iterations of the static increments and the settling whose tangent was not
   /// positive definite (StaticResult::indefinite_iterations: a diagnostic of the solve, e.g.
   /// iterates with compressed elements; it does not mean an equilibrium on the way was
