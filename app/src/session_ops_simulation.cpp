@@ -152,6 +152,13 @@ SolveOp parse_solve(Fields& f) {
   op.check_stability = f.optional_bool("check_stability", op.check_stability);
   if (op.check_stability && p.linear)
     f.fail("check_stability", "needs the nonlinear analysis (a linear one has no equilibrium state to test)");
+  op.minimize = f.optional_bool("minimize", op.minimize);
+  if (op.minimize && p.linear)
+    f.fail("minimize", "needs the nonlinear analysis (a linear one solves once, it minimises nothing)");
+  p.shift_indefinite = op.minimize;
+  p.quasi_newton_steps = f.optional_int("quasi_newton_steps", p.quasi_newton_steps, 0, 1000);
+  if (!op.minimize && f.has("quasi_newton_steps"))
+    f.fail("quasi_newton_steps", "applies only with \"minimize\": true (Newton steps otherwise)");
   return op;
 }
 

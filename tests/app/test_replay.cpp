@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -301,4 +302,48 @@ TEST(Replay, SolveReportsWhetherTheStateIsAStableEquilibrium) {
     }
     fs::remove_all(dir);
   }
+}
+
+// A solve with "minimize" (energy minimisation: quasi-Newton steps from the tangent at the
+// unloaded start) reaches the equilibrium Newton's load-driven solve reaches: a tube with held
+// ends inflated until the wall moves out by about 5 % of its radius.
+TEST(Replay, SolveByEnergyMinimisationReachesTheNewtonEquilibrium) {
+  const auto session = [](const std::string& extra) {
+    return "{\"format\": \"sutura-session\", \"version\": 1}\n"
+           "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, "
+           "\"length\": 16, \"segments_around\": 24, \"segments_along\": 16}\n"
+           "{\"op\": \"material\", \"object\": \"t\", \"youngs_modulus\": 1, \"poisson_ratio\": 0.45, "
+           "\"thickness\": 0.8}\n"
+           "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": \"all\"}\n"
+           "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.01}\n"
+           "{\"op\": \"solve\", \"check_stability\": true" + extra + "}\n"
+           "{\"op\": \"probe\", \"object\": \"t\", \"name\": \"mid\", \"point\": [4, 0, 8]}\n";
+  };
+  nlohmann::json solves[2], probes[2];
+  int k = 0;
+  for (const std::string extra : {"", ", \"minimize\": true"}) {
+    fs::path dir = fresh_dir("minimize");
+    std::ofstream(dir / "s.jsonl") << session(extra);
+    ReplayOptions o;
+    o.out_dir = dir / "out";
+    const ReplayResult r = replay(load_session(dir / "s.jsonl"), o);
+    ASSERT_EQ(r.report.at("status"), "ok") << r.report.dump();
+    solves[k] = r.report.at("actions").at(4);
+    probes[k] = r.report.at("actions").at(5);
+    ++k;
+    fs::remove_all(dir);
+  }
+  ASSERT_EQ(solves[1].at("op"), "solve");
+  EXPECT_FALSE(solves[0].contains("quasi_newton_iterations"));
+  EXPECT_GT(solves[1].at("quasi_newton_iterations").get<int>(), 0);
+  EXPECT_LT(solves[1].at("iterations").get<int>(), solves[0].at("iterations").get<int>());
+  EXPECT_TRUE(solves[1].at("equilibrium").at("stable").get<bool>());
+  const auto u = [](const nlohmann::json& probe) {
+    const auto& v = probe.at("values");
+    return std::array<double, 3>{v.at("ux").get<double>(), v.at("uy").get<double>(),
+                                 v.at("uz").get<double>()};
+  };
+  const auto a = u(probes[0]), b = u(probes[1]);
+  EXPECT_GT(a[0], 0.1);  // the wall moved out (membrane theory, free ends: p R^2 / (E t) = 0.2)
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-7) << "component " << i;
 }

@@ -254,8 +254,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   // Residual norms since the factorisation in use (the first: where it was made); empty when
   // the factorisation came from the previous solve.
   std::vector<double> norms;
-  bool need_tangent = qn_steps == 0 || ws.reusable_factor == 0 || ws.reusable_size != n ||
-                      ws.reusable_factor != solver.definite_factor_id();
+  bool need_tangent = qn_steps == 0 || !ws.holds_reusable_factor(n);
   int newton_steps = 0, since_factor = 0;
   double step_length = 1.0, first_work = -1.0, lm_shift = 0.0, work_done = 0.0;
   bool collapsed_trial = false;
@@ -367,8 +366,11 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
       ws.reusable_size = n;
       return {};
     }
-    // A new tangent when the last one has served its count, when a quasi-Newton step had to
-    // be cut short, or when the residual has not halved over the last kWindow steps.
+    // A new tangent when the last one has served its count, or when the residual has not
+    // halved over the last kWindow steps. (Also tried: a new tangent after a quasi-Newton step
+    // cut below 1/4, or after 4-8 cut steps in a row: fewer steps on the inflation and the
+    // subclavian flap, more on the patch aortoplasty, where a Levenberg-Marquardt shifted
+    // factorisation is off by design and the pairs correct it; docs/performance.md.)
     norms.push_back(ev.residual.norm());
     const std::size_t k = norms.size();
     need_tangent = qn_steps == 0 || since_factor >= qn_steps ||
@@ -406,6 +408,11 @@ StaticResult linear_solve(const ShellSystem& sys, const DofMap& map, ShellState&
 }
 
 }  // namespace
+
+bool SolverWorkspace::holds_reusable_factor(Eigen::Index num_free) const {
+  return solver_ && reusable_factor != 0 && reusable_factor == solver_->definite_factor_id() &&
+         reusable_size == num_free;
+}
 
 LinearSolver& SolverWorkspace::solver(LinearSolverKind kind, const PcgParams& pcg) {
   const bool same_pcg =
@@ -463,6 +470,17 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
   }
   double energy_scale =
       std::max({force * characteristic_length(state), params.energy_reference, 1e-30});
+  // A load-stepped energy minimisation starts its quasi-Newton steps from the tangent at the
+  // start, where `state` is in equilibrium at lambda_start (positive definite if that is
+  // stable: for an unloaded start the small-displacement stiffness, and the load stiffness of
+  // pressure is zero there). Without it the first tangent is the one at the first load
+  // step's level, indefinite where pressure acts on a still unstressed shell.
+  const bool quasi_newton = params.shift_indefinite &&
+                            params.linear_solver == LinearSolverKind::Cholmod &&
+                            params.quasi_newton_steps > 0;
+  if (quasi_newton && params.lambda_start != params.lambda_end &&
+      !ws.holds_reusable_factor(static_cast<Eigen::Index>(map.num_free())))
+    factorize_for_quasi_newton(sys, state, params.lambda_start, ws);
   while (t_done < 1.0 - 1e-12) {
     const double t = std::min(1.0, t_done + dt);
     const double lambda = lambda_at(t);

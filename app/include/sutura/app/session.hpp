@@ -179,6 +179,10 @@ struct SolveOp {
   /// After a converged nonlinear solve, test whether the state is a stable equilibrium
   /// (engine::check_stability; reported, never changed).
   bool check_stability = false;
+  /// Find the equilibrium as a minimum of the total potential energy (params.shift_indefinite:
+  /// Levenberg-Marquardt and quasi-Newton steps, line search on the potential). Only for
+  /// conservative loads and a stable equilibrium; it cannot follow an unstable branch.
+  bool minimize = false;
 };
 
 /// Implicit dynamics of the named objects (all when empty).

@@ -121,6 +121,8 @@ class SolverWorkspace {
   /// else factorised, sees a different id and factorises anew.
   std::uint64_t reusable_factor = 0;
   Eigen::Index reusable_size = -1;
+  /// Whether the solver still holds that factorisation, for a system of num_free free DOFs.
+  [[nodiscard]] bool holds_reusable_factor(Eigen::Index num_free) const;
 
  private:
   TangentAssembler assembler_;
