@@ -15,6 +15,7 @@
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/blas_kernels.hpp"
+#include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
@@ -93,6 +94,11 @@ int main(int argc, char** argv) {
   replay->add_option("-o,--out", out_dir, "Output directory (created if missing)")
       ->capture_default_str();
   replay->add_flag("-q,--quiet", quiet, "No progress on stderr");
+  int threads = 0;
+  replay->add_option("--threads", threads,
+                     "Compute threads (OpenMP and BLAS); default: one per core. 1 is faster where "
+                     "other processes keep the cores busy; positions then differ in the last bits")
+      ->check(CLI::Range(1, 1024));
 
   std::string mesh_file;
   double weld = 1e-6;
@@ -110,7 +116,10 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*replay) return run_replay(session_file, out_dir, quiet);
+    if (*replay) {
+      if (threads > 0) sutura::engine::set_compute_threads(threads);
+      return run_replay(session_file, out_dir, quiet);
+    }
     if (*info) return run_info(mesh_file, weld);
     if (*arch) return sutura::app::run_generate_arch(arch_options);
     if (*gui) return sutura::ui::run_gui(gui_options);

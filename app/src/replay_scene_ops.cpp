@@ -5,6 +5,7 @@
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/blas_kernels.hpp"
+#include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
 namespace sutura::app::detail {
@@ -28,8 +29,10 @@ SceneObject& Run::object(const std::string& name) {
 json Run::report(const std::string& status, const std::string& error, double total) const {
   json objects = json::object();
   for (const auto& o : workspace.objects()) objects[o.name] = object_summary(o);
+  const engine::ComputeThreads threads = engine::compute_threads();
   json r = {{"sutura_version", SUTURA_VERSION},
             {"blas", engine::blas_kernels_in_use()},
+            {"threads", {{"openmp", threads.openmp}, {"blas", threads.blas}}},
             {"session", session.file.generic_string()},
             {"description", session.description},
             {"status", status},

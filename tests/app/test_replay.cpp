@@ -189,6 +189,33 @@ TEST(SuturaCli, RunsWithTheBlasKernelsTheCpuSupports) {
   }
 }
 
+// --threads sets the compute threads (OpenMP and BLAS); the report records them, and the same
+// count gives the same positions run after run.
+TEST(SuturaCli, ThreadsOptionSetsAndReportsTheThreadCount) {
+  const auto replay_with = [](const std::string& option) {
+    fs::path out = fresh_dir("threads");
+    std::string err;
+    EXPECT_EQ(run_sutura("replay " + kDefaultSession.string() + " -q " + option + " --out " +
+                             out.string(),
+                         &err),
+              0)
+        << err;
+    auto report = nlohmann::json::parse(read_text(out / "report.json"));
+    fs::remove_all(out);
+    return report;
+  };
+  const auto a = replay_with("--threads 1"), b = replay_with("--threads 1");
+  EXPECT_EQ(a.at("threads").at("openmp"), 1);
+  if (sutura::engine::blas_kernels_in_use().rfind("OpenBLAS", 0) == 0) {
+    EXPECT_EQ(a.at("threads").at("blas"), 1);
+  }
+  EXPECT_EQ(a.at("objects"), b.at("objects"));  // position hashes included
+  EXPECT_GE(replay_with("").at("threads").at("openmp").get<int>(), 1);
+  std::string err;
+  EXPECT_NE(run_sutura("replay " + kDefaultSession.string() + " --threads 0", &err), 0);
+  EXPECT_NE(err.find("--threads"), std::string::npos) << err;
+}
+
 TEST(SuturaCli, BadSessionExitsNonZeroWithLineNumber) {
   fs::path dir = fresh_dir("clibad");
   std::ofstream(dir / "s.jsonl") << "{\"format\": \"sutura-session\", \"version\": 1}\n"

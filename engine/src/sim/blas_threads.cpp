@@ -25,6 +25,16 @@ const OpenBlas& openblas() {
 
 }  // namespace
 
+int blas_thread_count() {
+  const OpenBlas& blas = openblas();
+  return blas.get != nullptr ? blas.get() : 1;
+}
+
+void set_blas_thread_count(int n) {
+  const OpenBlas& blas = openblas();
+  if (blas.set != nullptr) blas.set(n);
+}
+
 SingleThreadedBlas::SingleThreadedBlas() {
   const OpenBlas& blas = openblas();
   if (blas.get == nullptr) return;

@@ -13,6 +13,11 @@
 
 namespace sutura::engine::detail {
 
+/// OpenBLAS's thread count (1 when another BLAS is loaded).
+int blas_thread_count();
+/// Sets OpenBLAS's thread count (no-op with another BLAS).
+void set_blas_thread_count(int n);
+
 /// Runs BLAS on one thread while alive, then restores the previous count.
 class SingleThreadedBlas {
  public:
