@@ -54,11 +54,12 @@ struct MaterialDraft {
 struct SimulationSettings {
   int steps = 60;
   float dt = 1e-3f;
-  /// Increments of s of a (static) relaxation. 5, as in the bundled sessions: fewer, larger
-  /// increments take fewer Newton iterations in all (coarse patch aortoplasty, 2026-12-02: 40
-  /// increments 83 iterations and 8.9 s, 10: 34 and 3.6 s, 5: 23 and 2.7 s, the same lumen
-  /// to 9 digits).
-  int relax_steps = 5;
+  /// Increments of s of a (static) relaxation. 3, as in the bundled arch sessions: fewer,
+  /// larger increments cost less in all (coarse patch aortoplasty, 2026-12-02, with Newton
+  /// steps only: 40 increments 83 iterations and 8.9 s, 10: 34 and 3.6 s, 5: 23 and 2.7 s;
+  /// with the quasi-Newton steps since: 5 increments 1.5 s, 3: 1.1 s; the same lumen to 8
+  /// digits).
+  int relax_steps = 3;
   bool collapse_barrier = false;  ///< records "collapse_barrier": true (session-format.md)
 };
 
