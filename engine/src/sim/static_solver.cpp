@@ -207,7 +207,10 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
 // the Cholesky factorisation succeeds: a descent direction of the energy where K is indefinite
 // (an energy-driven run passing an instability), where plain Newton would head for a saddle.
 // Consecutive iterations of one instability need similar shifts, and each trial is a full
-// factorisation. Returns false if no shift up to 1e4 works.
+// factorisation. `coarse` (with quasi-Newton steps): grown a hundredfold, from the last shift
+// that worked itself; an over-shifted factorisation then costs only a few more cheap steps (the
+// L-BFGS pairs correct it), a failed trial a whole factorisation. Returns false if no shift up
+// to 1e4 works.
 bool factorize_shifted(LinearSolver& solver, const Eigen::SparseMatrix<double>& K,
                        double& lm_shift, bool coarse, StaticResult& result) {
   if (solver.factorize_definite(K)) {
@@ -237,8 +240,9 @@ bool factorize_shifted(LinearSolver& solver, const Eigen::SparseMatrix<double>& 
 std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& state, double lambda,
                      const StaticSolverParams& params, LinearSolver& solver, double energy_scale,
                      StaticResult& result, SolverWorkspace& ws) {
-  // Measured on the patch aortoplasty, fine arch (docs/performance.md): depth 8 and a window
-  // of 4 steps over which the residual must halve.
+  // Measured on the patch aortoplasty, fine arch (docs/performance.md): 20 pairs (8: more
+  // steps; 40: the same) and a window of 4 steps over which the residual must halve (3, 6, 8:
+  // more tangents or more steps).
   constexpr int kDepth = 20;
   constexpr std::size_t kWindow = 4;
   const auto n = static_cast<Eigen::Index>(map.num_free());
