@@ -23,6 +23,10 @@ CLI::App* add_gui_command(CLI::App& app, ui::GuiOptions& options) {
                   "Anti-aliasing samples of the window (0 = off; 4 looks smoother on a GPU)")
       ->capture_default_str()
       ->check(CLI::Range(0, 16));
+  gui->add_option("--threads", options.threads,
+                  "Compute threads of the simulation (OpenMP and BLAS); default: one per core. "
+                  "1 is faster where other processes keep the cores busy")
+      ->check(CLI::Range(1, 1024));
   return gui;
 }
 

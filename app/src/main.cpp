@@ -15,17 +15,18 @@
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/blas_kernels.hpp"
-#include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
 namespace {
 
-int run_replay(const std::string& session_file, const std::string& out_dir, bool quiet) {
+int run_replay(const std::string& session_file, const std::string& out_dir, bool quiet,
+               int threads) {
   using namespace sutura::app;
   const Session session = load_session(session_file);
   ReplayOptions options;
   options.out_dir = out_dir;
+  options.threads = threads;
   options.progress = quiet ? nullptr : &std::cerr;
   // Long runs (a relaxation can take minutes) show where they stand, at most once a second
   // so a run of thousands of dynamics steps does not flood the terminal.
@@ -116,10 +117,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*replay) {
-      if (threads > 0) sutura::engine::set_compute_threads(threads);
-      return run_replay(session_file, out_dir, quiet);
-    }
+    if (*replay) return run_replay(session_file, out_dir, quiet, threads);
     if (*info) return run_info(mesh_file, weld);
     if (*arch) return sutura::app::run_generate_arch(arch_options);
     if (*gui) return sutura::ui::run_gui(gui_options);

@@ -1,6 +1,7 @@
 #include "sutura/app/session_runner.hpp"
 
 #include "replay_run.hpp"
+#include "sutura/engine/compute_threads.hpp"
 
 namespace sutura::app {
 
@@ -44,6 +45,7 @@ SessionRunner::~SessionRunner() = default;
 json SessionRunner::execute(const Action& a) {
   detail::Run& run = impl_->run;
   const auto t0 = clock_type::now();
+  if (impl_->options.threads > 0) engine::set_compute_threads(impl_->options.threads);
   json details;
   try {
     details = std::visit(
@@ -69,6 +71,8 @@ const Workspace& SessionRunner::workspace() const { return impl_->run.workspace;
 const ReplayOptions& SessionRunner::options() const { return impl_->options; }
 
 json SessionRunner::report(const std::string& status, const std::string& error) const {
+  // The counts the report records are read on the calling thread: make them the run's.
+  if (impl_->options.threads > 0) engine::set_compute_threads(impl_->options.threads);
   return impl_->run.report(status, error, impl_->elapsed());
 }
 

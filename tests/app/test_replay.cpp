@@ -5,10 +5,13 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/app/session_runner.hpp"
 #include "sutura/engine/blas_kernels.hpp"
+#include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/render/image.hpp"
@@ -373,4 +376,26 @@ TEST(Replay, SolveByEnergyMinimisationReachesTheNewtonEquilibrium) {
   const auto a = u(probes[0]), b = u(probes[1]);
   EXPECT_GT(a[0], 0.1);  // the wall moved out (membrane theory, free ends: p R^2 / (E t) = 0.2)
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-7) << "component " << i;
+}
+
+// ReplayOptions::threads is applied on the thread that runs each op: a thread started later
+// (the GUI's worker) would otherwise run with the default count, OpenMP's being per thread.
+TEST(Replay, TheThreadCountIsSetOnTheThreadThatRunsTheOp) {
+  fs::path dir = fresh_dir("threads_runner");
+  std::ofstream(dir / "s.jsonl")
+      << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+         "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\"}\n";
+  const Session session = load_session(dir / "s.jsonl");
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  o.threads = 1;
+  SessionRunner runner(session.file, session.description, o);
+  int seen = -1;
+  std::thread worker([&] {
+    runner.execute(session.actions.at(0));
+    seen = sutura::engine::compute_threads().openmp;
+  });
+  worker.join();
+  EXPECT_EQ(seen, 1);
+  fs::remove_all(dir);
 }

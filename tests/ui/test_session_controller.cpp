@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <thread>
 #include <unistd.h>
 
@@ -20,11 +21,12 @@ namespace {
 struct Fixture {
   fs::path dir;
   std::unique_ptr<ui::SessionController> controller;
-  explicit Fixture(const std::string& name) {
+  explicit Fixture(const std::string& name, int threads = 0) {
     dir = fs::temp_directory_path() / ("sutura_ctl_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     app::ReplayOptions o;
     o.out_dir = dir / "out";
+    o.threads = threads;
     controller = std::make_unique<ui::SessionController>(
         ui::SessionRecorder::create(dir / "rec.jsonl", "test"), o);
   }
@@ -109,4 +111,31 @@ TEST(SessionController, WorkerReportsProgressAndCancelRestoresThePreRunState) {
   EXPECT_FALSE(f.controller->busy());
   EXPECT_EQ(hash(f.controller->workspace()), before);
   EXPECT_EQ(f.controller->recorder().lines(), lines);
+}
+
+// The GUI's --threads: a long op on the worker thread runs with the chosen count (OpenMP's
+// count is per thread, so it is set where each op runs), the report records it, and the result
+// is the one `sutura replay` gets with the same count.
+TEST(SessionController, TheWorkerRunsWithTheChosenThreadCount) {
+  Fixture f("threads", 1);
+  ASSERT_TRUE(f.controller->run(kStrip).ok);
+  ASSERT_TRUE(f.controller->run(kFixEnd).ok);
+  ASSERT_TRUE(f.controller->run(kGravity).ok);
+  std::string why;
+  ASSERT_TRUE(f.controller->start({{"op", "solve"}}, why)) << why;
+  std::optional<ui::ActionOutcome> outcome;
+  for (int i = 0; i < 4000 && !outcome; ++i) {
+    outcome = f.controller->poll();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(outcome);
+  ASSERT_TRUE(outcome->ok) << outcome->message;
+  f.controller->write_report();
+  const json report = json::parse(std::ifstream(f.dir / "out" / "report.json"));
+  EXPECT_EQ(report.at("threads").at("openmp"), 1);
+  app::ReplayOptions o;
+  o.out_dir = f.dir / "replayed";
+  o.threads = 1;
+  const app::ReplayResult r = app::replay(app::load_session(f.dir / "rec.jsonl"), o);
+  EXPECT_EQ(hash(r.workspace), hash(f.controller->workspace()));
 }

@@ -146,6 +146,7 @@ int run_gui(const GuiOptions& options) {
   }
   app::ReplayOptions replay_options;
   replay_options.out_dir = options.out_dir;
+  replay_options.threads = options.threads;
   SessionController controller(std::move(*recorder), replay_options);
   if (existing) {
     try {

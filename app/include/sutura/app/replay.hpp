@@ -46,6 +46,11 @@ struct ReplayOptions {
   /// may block (pause). Return false to cancel the op (it then throws OpCancelled).
   /// Empty: never called.
   std::function<bool(const RunProgress&)> on_progress;
+  /// Compute threads (OpenMP and OpenBLAS, engine::set_compute_threads), set before every op
+  /// on the thread that runs it (the GUI runs long ops on a worker thread, and OpenMP's count
+  /// is per thread); 0 = leave them as they are (one per core unless the environment says
+  /// otherwise). Position hashes depend on it; the report records it.
+  int threads = 0;
 };
 
 struct ReplayResult {

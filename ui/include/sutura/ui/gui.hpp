@@ -24,6 +24,8 @@ struct GuiOptions {
   /// 4 samples cost about twice the frame time.
   int samples = 0;
   bool visible = true;
+  /// Compute threads of the simulation (app::ReplayOptions::threads); 0 = one per core.
+  int threads = 0;
 };
 
 /// Opens the window and runs until it is closed. Returns the process exit code: 0, 1 when
