@@ -66,6 +66,26 @@ Evaluation evaluate_trial(const ShellSystem& sys, const DofMap& map, const Shell
   return e;
 }
 
+// The checks and bookkeeping of every iterate of newton() and minimize(): a non-finite state
+// or an exploded energy fails (the message says why), otherwise the iterate goes into the
+// history and the result. `work_done` is the loads' work since the start of the load step.
+std::string record_iterate(const Evaluation& ev, double lambda, int it, double step_length,
+                           double work_done, double energy_scale, bool collapsed_trial,
+                           const StaticSolverParams& params, StaticResult& result) {
+  const double rnorm = ev.residual.norm();
+  if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
+    return collapsed_trial ? "every trial step collapsed a triangle (area below " +
+                                 std::to_string(params.min_area_ratio) + " of its rest area)"
+                           : "the state became non-finite (NaN/inf)";
+  if (ev.internal_energy > params.energy_blowup * energy_scale)
+    return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
+  result.history.push_back(
+      {lambda, it, rnorm, ev.internal_energy, step_length, ev.internal_energy - work_done});
+  result.residual = rnorm;
+  result.energy = ev.internal_energy;
+  return {};
+}
+
 // Newton iterations at a fixed load factor. Returns an empty string on convergence, else why
 // it failed (the caller restores the state).
 //
@@ -96,16 +116,10 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
   double work_done = 0.0;  // by the loads since the start of this load step (external_work)
   for (int it = 0;; ++it) {
     const double rnorm = ev.residual.norm();
-    if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
-      return collapsed_trial ? "every trial step collapsed a triangle (area below " +
-                                   std::to_string(params.min_area_ratio) + " of its rest area)"
-                             : "the state became non-finite (NaN/inf)";
-    if (ev.internal_energy > params.energy_blowup * energy_scale)
-      return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
-    result.history.push_back(
-        {lambda, it, rnorm, ev.internal_energy, step_length, ev.internal_energy - work_done});
-    result.residual = rnorm;
-    result.energy = ev.internal_energy;
+    if (std::string failed = record_iterate(ev, lambda, it, step_length, work_done, energy_scale,
+                                            collapsed_trial, params, result);
+        !failed.empty())
+      return failed;
     if (rnorm <= params.tolerance * ref) return {};
     if (it == params.max_iterations) {
       std::ostringstream m;
@@ -265,19 +279,12 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) { return solver.solve(q, z); };
   for (int it = 0;; ++it) {
     const double rnorm = ev.residual.norm();
-    if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
-      return collapsed_trial ? "every trial step collapsed a triangle (area below " +
-                                   std::to_string(params.min_area_ratio) + " of its rest area)"
-                             : "the state became non-finite (NaN/inf)";
-    if (ev.internal_energy > params.energy_blowup * energy_scale)
-      return "the strain energy exploded (" + std::to_string(ev.internal_energy) + " N*mm)";
-    result.history.push_back(
-        {lambda, it, rnorm, ev.internal_energy, step_length, ev.internal_energy - work_done});
-    result.residual = rnorm;
-    result.energy = ev.internal_energy;
+    if (std::string failed = record_iterate(ev, lambda, it, step_length, work_done, energy_scale,
+                                            collapsed_trial, params, result);
+        !failed.empty())
+      return failed;
     if (rnorm <= params.tolerance * ref) {
-      ws.reusable_factor = solver.definite_factor_id();
-      ws.reusable_size = n;
+      ws.keep_factor(n);
       return {};
     }
     if ((need_tangent && newton_steps == params.max_iterations) ||
@@ -366,8 +373,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
                                 ev.internal_energy - work_done});
       result.residual = ev.residual.norm();
       result.energy = ev.internal_energy;
-      ws.reusable_factor = solver.definite_factor_id();
-      ws.reusable_size = n;
+      ws.keep_factor(n);
       return {};
     }
     // A new tangent when the last one has served its count, or when the residual has not
@@ -413,9 +419,14 @@ StaticResult linear_solve(const ShellSystem& sys, const DofMap& map, ShellState&
 
 }  // namespace
 
+void SolverWorkspace::keep_factor(Eigen::Index num_free) {
+  reusable_factor_ = solver_ ? solver_->definite_factor_id() : 0;
+  reusable_size_ = num_free;
+}
+
 bool SolverWorkspace::holds_reusable_factor(Eigen::Index num_free) const {
-  return solver_ && reusable_factor != 0 && reusable_factor == solver_->definite_factor_id() &&
-         reusable_size == num_free;
+  return solver_ && reusable_factor_ != 0 && reusable_factor_ == solver_->definite_factor_id() &&
+         reusable_size_ == num_free;
 }
 
 LinearSolver& SolverWorkspace::solver(LinearSolverKind kind, const PcgParams& pcg) {
@@ -435,8 +446,7 @@ bool factorize_for_quasi_newton(const ShellSystem& sys, const ShellState& state,
   LinearSolver& solver = workspace.solver(LinearSolverKind::Cholmod, {});
   const Evaluation ev = evaluate(sys, map, state, lambda, true, true, &workspace.assembler());
   if (!solver.factorize_definite(ev.tangent)) return false;
-  workspace.reusable_factor = solver.definite_factor_id();
-  workspace.reusable_size = static_cast<Eigen::Index>(map.num_free());
+  workspace.keep_factor(static_cast<Eigen::Index>(map.num_free()));
   return true;
 }
 

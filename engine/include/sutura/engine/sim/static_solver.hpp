@@ -115,16 +115,17 @@ class SolverWorkspace {
   /// For the tangent without the load stiffness (a triplet structure of its own).
   TangentAssembler& internal_assembler() { return internal_assembler_; }
 
-  /// The factorisation a converged energy minimisation left in the solver for the next solve
-  /// to start its quasi-Newton steps with: its LinearSolver::definite_factor_id (0 = none) and
-  /// the number of free DOFs. A solve of a system with another structure, or after anything
-  /// else factorised, sees a different id and factorises anew.
-  std::uint64_t reusable_factor = 0;
-  Eigen::Index reusable_size = -1;
-  /// Whether the solver still holds that factorisation, for a system of num_free free DOFs.
+  /// Marks the solver's current factorisation (if positive definite) as the start of the next
+  /// energy minimisation's quasi-Newton steps, for systems of num_free free DOFs.
+  void keep_factor(Eigen::Index num_free);
+  /// Whether the solver still holds the kept factorisation, for a system of num_free free
+  /// DOFs: a solve of a system with another structure, or after anything else factorised
+  /// (another LinearSolver::definite_factor_id), factorises anew.
   [[nodiscard]] bool holds_reusable_factor(Eigen::Index num_free) const;
 
  private:
+  std::uint64_t reusable_factor_ = 0;  ///< definite_factor_id of the kept factorisation (0: none)
+  Eigen::Index reusable_size_ = -1;    ///< free DOFs of the system it was made for
   TangentAssembler assembler_;
   TangentAssembler internal_assembler_;
   std::unique_ptr<LinearSolver> solver_;
