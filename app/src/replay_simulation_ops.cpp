@@ -26,6 +26,36 @@ void commit_pending_loads(SceneObject& o) {
   o.sim.pending_factor = 0.0;
 }
 
+// An energy minimisation ("minimize") looks for a minimum of strain energy minus the work of
+// the loads; a pressure that reaches a rim free to move has no such potential there, and the
+// minimisation can stall short of the equilibrium after many steps (measured: the subclavian
+// flap's inflation with its LSA end free gave up after 53 s, the residual 3e4 times too large).
+// Throws naming the object and a vertex of the rim.
+void require_conservative_pressure(MergedSystem& merged) {
+  const engine::ShellSystem& sys = merged.system();
+  std::set<std::size_t> rim;
+  for (const engine::Loads* loads : {&sys.loads, &sys.fixed_loads})
+    for (const std::size_t v : engine::free_pressure_rim(sys.problem, *loads, sys.constraints))
+      rim.insert(v);
+  if (rim.empty()) return;
+  const std::size_t node = *rim.begin();
+  std::size_t offset = 0;
+  for (const auto& [name, x] : merged.positions_by_object(merged.state().x)) {
+    if (node < offset + x.size()) {
+      const engine::Vec3& p = x[node - offset];
+      std::ostringstream m;
+      m.precision(3);
+      m << std::fixed << "\"minimize\" needs loads with a potential energy, but the pressure on '"
+        << name << "' ends at a rim that is free to move (vertex " << node - offset << " at ("
+        << p.x() << ", " << p.y() << ", " << p.z() << ")";
+      if (rim.size() > 1) m << " and " << rim.size() - 1 << " more";
+      m << "): hold the rim (\"fix\") or solve without \"minimize\"";
+      throw std::runtime_error(m.str());
+    }
+    offset += x.size();
+  }
+}
+
 // What a surgeon must be told about a simulated shape (`what`) beyond the numbers: that it is
 // not a stable equilibrium (a small disturbance would carry it off, e.g. buckle a wall that
 // came to rest compressed but symmetric), so the measurements describe a shape the vessel
@@ -179,6 +209,7 @@ json Run::execute(const SolveOp& op) {
   const auto model = make_model(op.model);
   const engine::AreaBarrierParams barrier;
   MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &barrier : nullptr);
+  if (op.minimize) require_conservative_pressure(merged);
   engine::StaticSolverParams params = op.params;
   params.lambda_start = start;
   params.lambda_end = op.load_factor;

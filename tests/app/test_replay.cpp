@@ -378,6 +378,36 @@ TEST(Replay, SolveByEnergyMinimisationReachesTheNewtonEquilibrium) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-7) << "component " << i;
 }
 
+// "minimize" needs a potential energy: a pressure reaching a free rim has none there (the open
+// end z = 16 of a tube held only at z = 0), so the solve is refused before it starts, naming
+// the object and a vertex of that rim.
+TEST(Replay, SolveByEnergyMinimisationRefusesAPressureUpToAFreeRim) {
+  fs::path dir = fresh_dir("minimize_rim");
+  std::ofstream(dir / "s.jsonl")
+      << "{\"format\": \"sutura-session\", \"version\": 1}\n"
+         "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, "
+         "\"length\": 16, \"segments_around\": 24, \"segments_along\": 16}\n"
+         "{\"op\": \"fix\", \"object\": \"t\", \"boundary_near\": [[4, 0, 0]]}\n"
+         "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.01}\n"
+         "{\"op\": \"solve\", \"minimize\": true}\n";
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  try {
+    replay(load_session(dir / "s.jsonl"), o);
+    FAIL() << "the pressure on the free end has no potential";
+  } catch (const SessionError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line(), 5);
+    EXPECT_NE(what.find("pressure on 't' ends at a rim that is free to move"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find(", 16.000) and 23 more"), std::string::npos) << what;
+    EXPECT_NE(what.find("hold the rim"), std::string::npos) << what;
+  }
+  auto report = nlohmann::json::parse(read_text(dir / "out" / "report.json"));
+  EXPECT_EQ(report["status"], "failed");
+  fs::remove_all(dir);
+}
+
 // ReplayOptions::threads is applied on the thread that runs each op: a thread started later
 // (the GUI's worker) would otherwise run with the default count, OpenMP's being per thread.
 TEST(Replay, TheThreadCountIsSetOnTheThreadThatRunsTheOp) {

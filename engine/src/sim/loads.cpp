@@ -1,5 +1,9 @@
 #include "sutura/engine/sim/loads.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
 #include <Eigen/Geometry>
 
 #include "../shell/so3.hpp"
@@ -114,6 +118,57 @@ double load_work(const ShellProblem& p, const ShellState& from, const ShellState
     work += pl.pressure * dv / 6.0;
   }
   return lambda * work;
+}
+
+std::vector<std::size_t> free_pressure_rim(const ShellProblem& p, const Loads& loads,
+                                           const Constraints& constraints) {
+  const auto& faces = *p.faces;
+  // Net pressure across each edge: every pressurised face adds its pressure with the sign of
+  // the direction in which it runs along the edge; with the same pressure on both sides of a
+  // consistently oriented edge the two cancel exactly.
+  struct Side {
+    std::uint64_t edge;  // lower vertex << 32 | higher vertex
+    double pressure;     // signed by the face's direction along the edge
+  };
+  std::vector<Side> sides;
+  double largest = 0.0;
+  for (const auto& pl : loads.pressures) {
+    if (pl.pressure == 0.0) continue;
+    largest = std::max(largest, std::abs(pl.pressure));
+    const std::size_t count = pl.faces.empty() ? faces.size() : pl.faces.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t e = pl.faces.empty() ? i : pl.faces[i].index();
+      if (e >= faces.size())
+        throw InvalidArgument("pressure on face " + std::to_string(e) + " out of range");
+      const auto& fc = faces[e];
+      for (int k = 0; k < 3; ++k) {
+        const auto a = static_cast<std::uint64_t>(fc[k]), b = static_cast<std::uint64_t>(fc[(k + 1) % 3]);
+        sides.push_back(a < b ? Side{a << 32 | b, pl.pressure} : Side{b << 32 | a, -pl.pressure});
+      }
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& l, const Side& r) {
+    return l.edge != r.edge ? l.edge < r.edge : l.pressure < r.pressure;
+  });
+  const auto held = [&](std::size_t v) {
+    return constraints.is_fixed(v, 0) && constraints.is_fixed(v, 1) && constraints.is_fixed(v, 2);
+  };
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i;
+    double net = 0.0;
+    for (; j < sides.size() && sides[j].edge == sides[i].edge; ++j) net += sides[j].pressure;
+    // Several pressure loads may cover one face (summed in another order on each side).
+    if (std::abs(net) > 1e-12 * largest) {
+      for (const std::size_t v : {static_cast<std::size_t>(sides[i].edge >> 32),
+                                  static_cast<std::size_t>(sides[i].edge & 0xffffffffu)})
+        if (!held(v)) out.push_back(v);
+    }
+    i = j;
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 }  // namespace sutura::engine

@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "sutura/engine/errors.hpp"
+#include "sutura/engine/generators.hpp"
+#include "sutura/engine/shell/rest_state.hpp"
 #include "sutura/engine/sim/loads.hpp"
 
 using namespace sutura::engine;
@@ -162,4 +165,116 @@ TEST(Loads, DeadLoadWorkIsForceTimesDisplacementAndMomentTimesRotation) {
   ShellState wrong = p.state;
   wrong.x.pop_back();
   EXPECT_THROW(load_work(p.problem(), p.state, wrong, l, 1.0), InvalidArgument);
+}
+
+namespace {
+
+// A tube (radius 4, length 6, 12 x 3 segments) as a problem for free_pressure_rim: its two end
+// loops are open rims, z = 0 and z = 6.
+struct Tube {
+  SurfaceMesh mesh = make_tube({4.0, 6.0, 12, 3});
+  std::vector<FaceIndices> faces = mesh.faces();
+  ShellState state = state_from_mesh(mesh);
+  RestState rest = rest_from_state(mesh, state);
+  std::vector<ShellMaterial> materials{ShellMaterial{}};
+  std::vector<int> face_material = std::vector<int>(faces.size(), 0);
+  [[nodiscard]] ShellProblem problem() const {
+    return ShellProblem{&faces, &rest, &materials, &face_material, mesh.num_vertices()};
+  }
+  // Vertices within 1e-9 of the plane z = `z`, sorted.
+  [[nodiscard]] std::vector<std::size_t> ring(double z) const {
+    std::vector<std::size_t> out;
+    for (std::size_t v = 0; v < mesh.num_vertices(); ++v)
+      if (std::abs(mesh.positions()[v].z() - z) < 1e-9) out.push_back(v);
+    return out;
+  }
+  // The faces with every corner at z <= `z`.
+  [[nodiscard]] std::vector<FaceId> faces_below(double z) const {
+    std::vector<FaceId> out;
+    for (std::size_t e = 0; e < faces.size(); ++e) {
+      bool below = true;
+      for (int k = 0; k < 3; ++k) below = below && mesh.positions()[faces[e][k]].z() <= z + 1e-9;
+      if (below) out.emplace_back(static_cast<int>(e));
+    }
+    return out;
+  }
+};
+
+std::vector<std::size_t> joined(std::vector<std::size_t> a, const std::vector<std::size_t>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  std::sort(a.begin(), a.end());
+  return a;
+}
+
+}  // namespace
+
+// The rim of a pressure is where the pressure forces are not the derivative of load_work: at
+// every vertex free_pressure_rim names, moving the vertex does work other than its force, and
+// at every other vertex exactly its force (pressure on the lower two thirds of an open tube:
+// the rims are the open end z = 0 and the border of the pressurised part, z = 4).
+TEST(Loads, FreePressureRimIsWhereThePressureForcesHaveNoPotential) {
+  Tube t;
+  Loads l;
+  l.pressures.push_back({t.faces_below(4.0), 0.3});
+  const std::vector<std::size_t> rim = free_pressure_rim(t.problem(), l, Constraints{});
+  EXPECT_EQ(rim, joined(t.ring(0.0), t.ring(4.0)));
+  Eigen::VectorXd f;
+  external_forces(t.problem(), t.state, l, 1.0, 3, f, nullptr);
+  const Vec3 v(0.3, -0.5, 0.8);
+  for (std::size_t n = 0; n < t.mesh.num_vertices(); ++n) {
+    const auto moved = [&](double a) {
+      ShellState s = t.state;
+      s.x[n] += a * v;
+      return s;
+    };
+    const double h = 1e-2;  // load_work is linear in one vertex's position: no truncation
+    const double dw = (load_work(t.problem(), t.state, moved(h), l, 1.0) -
+                       load_work(t.problem(), t.state, moved(-h), l, 1.0)) /
+                      (2 * h);
+    const double force = f.segment<3>(3 * n).dot(v);
+    const bool on_rim = std::binary_search(rim.begin(), rim.end(), n);
+    if (on_rim) EXPECT_GT(std::abs(dw - force), 1e-3 * std::abs(force) + 1e-9) << "vertex " << n;
+    else EXPECT_NEAR(dw, force, 1e-8 * (std::abs(force) + 1e-3)) << "vertex " << n;
+  }
+}
+
+// Held rims do not count (all three translations held, rotations need not be); a rim held in
+// only two translations does. Equal pressures from two loads on the same faces cancel across
+// every inner edge; two different pressures meeting make a rim; so does a face turned over.
+TEST(Loads, FreePressureRimIgnoresHeldVerticesAndFindsPressureJumpsAndFlippedFaces) {
+  Tube t;
+  const std::size_t n = t.mesh.num_vertices();
+  const auto ends = joined(t.ring(0.0), t.ring(6.0));
+  const auto ids = [](const std::vector<std::size_t>& vs) {
+    std::vector<VertexId> out;
+    for (const std::size_t v : vs) out.emplace_back(static_cast<int>(v));
+    return out;
+  };
+  Loads uniform;
+  uniform.pressures.push_back({{}, 0.3});
+  EXPECT_EQ(free_pressure_rim(t.problem(), uniform, Constraints{}), ends);
+  Constraints held;
+  held.fix(ids(ends), kTranslations, n);
+  EXPECT_TRUE(free_pressure_rim(t.problem(), uniform, held).empty());
+  Constraints partly;
+  partly.fix(ids(ends), kUx | kUy | kRotations, n);
+  EXPECT_EQ(free_pressure_rim(t.problem(), uniform, partly), ends);
+
+  Loads twice = uniform;
+  twice.pressures.push_back({{}, 0.1});
+  EXPECT_TRUE(free_pressure_rim(t.problem(), twice, held).empty());
+  Loads stepped = uniform;
+  stepped.pressures.push_back({t.faces_below(2.0), 0.1});
+  EXPECT_EQ(free_pressure_rim(t.problem(), stepped, held), t.ring(2.0));
+  Loads nothing;
+  nothing.pressures.push_back({{}, 0.0});
+  EXPECT_TRUE(free_pressure_rim(t.problem(), nothing, Constraints{}).empty());
+
+  // A face in the middle turned over (two corners swapped): its normal, and its pressure,
+  // point the other way.
+  const FaceId middle = t.faces_below(4.0).back();
+  std::swap(t.faces[middle.index()][1], t.faces[middle.index()][2]);
+  std::vector<std::size_t> corners(t.faces[middle.index()].begin(), t.faces[middle.index()].end());
+  std::sort(corners.begin(), corners.end());
+  EXPECT_EQ(free_pressure_rim(t.problem(), uniform, held), corners);
 }

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/engine/sim/constraints.hpp"
 
 namespace sutura::engine {
 
@@ -60,5 +61,18 @@ void external_forces(const ShellProblem& p, const ShellState& s, const Loads& lo
 /// Cost O(F).
 double load_work(const ShellProblem& p, const ShellState& from, const ShellState& to,
                  const Loads& loads, double lambda);
+
+/// The vertices at which the follower pressure of `loads` is not the derivative of load_work's
+/// volume potential and that are free to move: the corners of every edge across which the
+/// pressure jumps (an open rim of the pressurised faces, the border of a pressurised subset,
+/// two different pressures meeting, or a flip of the face orientation), unless `constraints`
+/// hold all three translations there. Empty: the pressure is conservative, so internal energy
+/// minus load_work is the total potential energy, a stable equilibrium is its minimum, and an
+/// energy minimisation (StaticSolverParams::shift_indefinite) may look for it.
+/// Why edges: around a vertex, p dV/dx and the corner forces p A n / 3 differ by terms that
+/// cancel pairwise across each edge with the same pressure on both sides (load_work).
+/// Sorted, without repeats. Cost O(F log F).
+std::vector<std::size_t> free_pressure_rim(const ShellProblem& p, const Loads& loads,
+                                           const Constraints& constraints);
 
 }  // namespace sutura::engine
