@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "blas_threads.hpp"
+#include "single_precision_factor.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -70,6 +71,12 @@ class LdltSolver final : public LinearSolver {
   PatternCache cache_;
 };
 
+// Eigen's supernodal LL^T with its CHOLMOD factor readable (for the single-precision copy).
+class SupernodalLlt : public Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
+ public:
+  [[nodiscard]] const cholmod_factor* factor() const { return m_cholmodFactor; }
+};
+
 class CholmodSolver final : public LinearSolver {
  public:
   // CHOLMOD prints a warning for every indefinite matrix; the fallback is reported through
@@ -77,6 +84,7 @@ class CholmodSolver final : public LinearSolver {
   CholmodSolver() { llt_.cholmod().print = 0; }
   bool factorize(const SpMat& A) override {
     note_.clear();
+    single_current_ = false;
     if (!cache_.same(A)) llt_.analyzePattern(A);
     llt_.factorize(A);
     use_fallback_ = llt_.info() != Eigen::Success;
@@ -89,6 +97,7 @@ class CholmodSolver final : public LinearSolver {
   }
   bool factorize_definite(const SpMat& A) override {
     note_.clear();
+    single_current_ = false;
     if (!cache_.same(A)) llt_.analyzePattern(A);
     llt_.factorize(A);
     use_fallback_ = false;
@@ -110,11 +119,23 @@ class CholmodSolver final : public LinearSolver {
     x = llt_.solve(b);
     return llt_.info() == Eigen::Success && x.allFinite();
   }
+  bool solve_approximately(const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    if (use_fallback_ || llt_.info() != Eigen::Success || llt_.factor() == nullptr)
+      return solve(b, x);
+    if (!single_current_) {
+      single_.assign(*llt_.factor());
+      single_current_ = true;
+    }
+    single_.solve(*llt_.factor(), b, x);
+    return x.allFinite();
+  }
   [[nodiscard]] std::string last_note() const override { return note_; }
   [[nodiscard]] std::uint64_t definite_factor_id() const override { return id_; }
 
  private:
-  Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> llt_;
+  SupernodalLlt llt_;
+  detail::SinglePrecisionFactor single_;
+  bool single_current_ = false;  ///< single_ holds the current factorisation's values
   LdltSolver fallback_;
   PatternCache cache_;
   bool use_fallback_ = false;

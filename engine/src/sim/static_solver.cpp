@@ -276,7 +276,13 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   int newton_steps = 0, since_factor = 0;
   double step_length = 1.0, first_work = -1.0, lm_shift = 0.0, work_done = 0.0;
   bool collapsed_trial = false;
-  const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) { return solver.solve(q, z); };
+  // L-BFGS's initial inverse Hessian is the factorised tangent: solved exactly for a Newton
+  // step, in single precision for a quasi-Newton step (single_precision_solves).
+  bool exact_h0 = true;
+  const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) {
+    return exact_h0 || !params.single_precision_solves ? solver.solve(q, z)
+                                                        : solver.solve_approximately(q, z);
+  };
   for (int it = 0;; ++it) {
     const double rnorm = ev.residual.norm();
     if (std::string failed = record_iterate(ev, lambda, it, step_length, work_done, energy_scale,
@@ -314,6 +320,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
         fresh = true;
         need_tangent = false;
       }
+      exact_h0 = fresh;
       const bool solved = lbfgs.apply(-ev.residual, du, h0);
       if (fresh && !solved) return "the linear solve failed: " + solver.last_note();
       if (fresh || (solved && du.dot(ev.residual) < 0.0)) break;

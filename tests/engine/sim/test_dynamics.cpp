@@ -144,3 +144,28 @@ TEST(Dynamics, RejectsBadParameters) {
   p.max_step_cuts = 11;
   EXPECT_THROW(simulate_dynamics(c.sys, s, p), InvalidArgument);
 }
+
+// Iterations on a reused step matrix solve in single precision by default
+// (single_precision_solves); the motion is the one with exact solves to within the step
+// tolerance, with as many iterations.
+TEST(Dynamics, SinglePrecisionSolvesOnAReusedMatrixGiveTheSameMotion) {
+  DynamicsParams p;
+  p.dt = 1e-3;
+  p.steps = 40;
+  DynamicsParams exact = p;
+  exact.single_precision_solves = false;
+  Cantilever a(make_corotational_shell(), 0.05, 16, 1), b(make_corotational_shell(), 0.05, 16, 1);
+  DynamicsState sa{a.state, {}}, sb{b.state, {}};
+  const DynamicsResult ra = simulate_dynamics(a.sys, sa, p);
+  const DynamicsResult rb = simulate_dynamics(b.sys, sb, exact);
+  ASSERT_TRUE(ra.ok) << ra.message;
+  ASSERT_TRUE(rb.ok) << rb.message;
+  a.state = sa.shell;
+  b.state = sb.shell;
+  const Vec3 ua = a.tip_displacement(), ub = b.tip_displacement();
+  EXPECT_GT(ub.norm(), 0.1);  // it swings
+  EXPECT_LT((ua - ub).norm(), 1e-6 * ub.norm()) << ua.transpose() << " / " << ub.transpose();
+  EXPECT_NE(sa.shell.x, sb.shell.x);  // the single-precision path was taken
+  EXPECT_LE(ra.newton_iterations, rb.newton_iterations + rb.steps_done / 10);
+  EXPECT_EQ(ra.factorizations, rb.factorizations);
+}

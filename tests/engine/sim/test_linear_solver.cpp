@@ -2,10 +2,12 @@
 
 #include <random>
 
+#include "sim_fixture.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/sim/linear_solver.hpp"
 
 using namespace sutura::engine;
+using sutura::engine::testing::Cantilever;
 
 namespace {
 // 2D Laplacian plus identity on an n x n grid: sparse, symmetric positive definite.
@@ -102,4 +104,66 @@ TEST(LinearSolver, ParseNames) {
   EXPECT_EQ(parse_linear_solver("pcg"), LinearSolverKind::Pcg);
   EXPECT_EQ(to_string(parse_linear_solver("cholmod")), "cholmod");
   EXPECT_THROW(parse_linear_solver("lu"), InvalidArgument);
+}
+
+// solve_approximately: Cholmod solves with its factor rounded to single precision (an answer
+// within float accuracy, not the double one, the same bits every time, and always from the
+// latest factorisation: new values on the same pattern, then a new pattern); after an
+// indefinite fallback, and for the other kinds, it is the exact solve.
+TEST(LinearSolver, SolveApproximatelyIsTheCholeskySolveInSinglePrecision) {
+  const auto A = spd(40);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd x_true(A.rows());
+  for (int i = 0; i < x_true.size(); ++i) x_true[i] = u(rng);
+  const Eigen::VectorXd b = A * x_true;
+  auto s = make_linear_solver(LinearSolverKind::Cholmod);
+  ASSERT_TRUE(s->factorize(A));
+  Eigen::VectorXd exact, x, again;
+  ASSERT_TRUE(s->solve(b, exact));
+  ASSERT_TRUE(s->solve_approximately(b, x));
+  const double error = (x - x_true).norm() / x_true.norm();
+  EXPECT_LT(error, 1e-6);   // cond(A) < 3: a few float roundings
+  EXPECT_GT(error, 1e-12);  // not the double solve
+  ASSERT_TRUE(s->solve_approximately(b, again));
+  EXPECT_EQ(again, x);
+  ASSERT_TRUE(s->factorize(4.0 * A));
+  ASSERT_TRUE(s->solve_approximately(b, x));
+  EXPECT_LT((x - 0.25 * x_true).norm() / x_true.norm(), 1e-6);
+  const auto B = spd(30);
+  const Eigen::VectorXd y_true = Eigen::VectorXd::LinSpaced(B.rows(), -2.0, 1.0);
+  ASSERT_TRUE(s->factorize_definite(B));
+  ASSERT_TRUE(s->solve_approximately(B * y_true, x));
+  EXPECT_LT((x - y_true).norm() / y_true.norm(), 1e-6);
+
+  Eigen::SparseMatrix<double> C = spd(6);
+  C.coeffRef(0, 0) = -3.0;  // indefinite: the LDL^T fallback
+  const Eigen::VectorXd c = C * Eigen::VectorXd::Ones(C.rows());
+  ASSERT_TRUE(s->factorize(C));
+  ASSERT_TRUE(s->solve(c, exact));
+  ASSERT_TRUE(s->solve_approximately(c, x));
+  EXPECT_EQ(x, exact);
+  for (auto kind : {LinearSolverKind::Ldlt, LinearSolverKind::Pcg}) {
+    auto other = make_linear_solver(kind);
+    ASSERT_TRUE(other->factorize(A));
+    ASSERT_TRUE(other->solve(b, exact));
+    ASSERT_TRUE(other->solve_approximately(b, x));
+    EXPECT_EQ(x, exact) << to_string(kind);
+  }
+}
+
+// On a shell tangent (the Sze strip, 6 DOF per node, membrane and bending stiffness (L/t)^2
+// apart) the single-precision solve stays close to the exact one: measured 4e-7 relative.
+TEST(LinearSolver, SolveApproximatelyOnAShellTangent) {
+  Cantilever c(make_corotational_shell(), 1.0, 32, 2);
+  const DofMap map(c.sys);
+  const Evaluation ev = evaluate(c.sys, map, c.state, 1.0, true);
+  auto s = make_linear_solver(LinearSolverKind::Cholmod);
+  ASSERT_TRUE(s->factorize_definite(ev.tangent));
+  const Eigen::VectorXd b = -ev.residual;
+  Eigen::VectorXd exact, x;
+  ASSERT_TRUE(s->solve(b, exact));
+  ASSERT_TRUE(s->solve_approximately(b, x));
+  EXPECT_LT((x - exact).norm() / exact.norm(), 1e-5);
+  EXPECT_GT((x - exact).norm() / exact.norm(), 1e-12);
 }

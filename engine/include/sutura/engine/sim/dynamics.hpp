@@ -30,6 +30,13 @@ struct DynamicsParams {
   /// N, >= 0: floor of the force the step tolerance is relative to (besides the step's first
   /// residual and |f_ext|); 0 = none. Steps taken at equilibrium need it (round-off residual).
   double force_reference = 0.0;
+  /// Newton iterations on a reused step matrix solve with its factor rounded to single
+  /// precision (LinearSolver::solve_approximately): they are inexact by the matrix's age
+  /// anyway and the residual is computed in double; at 5k elements such a solve takes about
+  /// a third of the exact one's time. The first iteration on a new matrix solves exactly, and
+  /// a run whose first reuse after it fails to halve the residual solves exactly from then on
+  /// (a factor too coarse in single precision: cond(A) near 1e7). false: every solve exact.
+  bool single_precision_solves = true;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;
 };

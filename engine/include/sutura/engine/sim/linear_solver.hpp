@@ -43,6 +43,15 @@ class LinearSolver {
   virtual bool factorize_indefinite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
   /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// Like solve, but the answer may carry a relative error of about cond(A) * 6e-8: Cholmod
+  /// solves with its factor rounded to single precision (about 1.5 times faster: the solve is
+  /// bound by reading the factor, single_precision_factor.hpp); the others solve exactly. For
+  /// iterations that correct their own steps' error against a residual computed in double
+  /// (quasi-Newton steps, modified Newton), never for a step that must be exact. The first call
+  /// after a factorisation rounds the factor (O(nnz(L))).
+  virtual bool solve_approximately(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    return solve(b, x);
+  }
   /// Identifies the current factorisation when it is a Cholesky factorisation of a positive
   /// definite matrix (a new number for every factorisation), 0 otherwise: none yet, a failed
   /// attempt, an indefinite fallback, or a solver that cannot tell. A caller that keeps

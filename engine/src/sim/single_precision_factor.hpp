@@ -1,0 +1,38 @@
+#pragma once
+// A CHOLMOD supernodal Cholesky factor rounded to single precision, and the permuted triangular
+// solves on it (private to engine/src/sim; LinearSolver::solve_approximately).
+//
+// Why: a back-substitution reads the whole factor twice and does two flops per entry read, so it
+// is bound by memory traffic, not arithmetic: nnz(L) is 7.5M at 20k elements (73 MB in double
+// with the supernodes' padding). Iterations that correct the error of their own step (the
+// quasi-Newton steps of an energy minimisation, the modified Newton of the dynamics) do not need
+// the exact solve, so they read half the bytes. Measured (2026-12-02, docs/performance.md):
+// 1.2-2.2 ms against CHOLMOD's 2.2-3.5 ms at 5k elements, 10-13 against 17-20 ms at 20k.
+//
+// Accuracy: the factor's entries carry relative errors up to 2^-24, so the solution's relative
+// error is bounded by about cond(A) * 6e-8 (measured 2e-6 to 8e-6 on the tangents of the issue-3
+// tube at 5k and 20k elements). Results are deterministic: one thread, a fixed order.
+#include <vector>
+
+#include <Eigen/Core>
+#include <cholmod.h>
+
+namespace sutura::engine::detail {
+
+class SinglePrecisionFactor {
+ public:
+  /// Rounds the values of `L` (supernodal LL^T, as CHOLMOD's supernodal factorisation leaves
+  /// it) to single precision. Cost O(nnz(L)); memory 4 bytes per entry.
+  void assign(const cholmod_factor& L);
+  /// x = A^-1 b approximately, A = P^T L L^T P with the values last assigned and the structure
+  /// (supernodes, row indices, permutation) of `L`, which must be the factor assigned from
+  /// (numeric refactorisations change only values: assign again after each). b.size() = L.n.
+  void solve(const cholmod_factor& L, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+ private:
+  std::vector<float> values_;  ///< L.x rounded, same layout (supernode by supernode)
+  std::vector<float> y_;       ///< permuted right-hand side, then solution
+  std::vector<float> work_;    ///< one supernode's off-diagonal rows
+};
+
+}  // namespace sutura::engine::detail
