@@ -139,14 +139,16 @@ void BM_BackSubstitution(benchmark::State& st) {
 
 // One run of 50 implicit steps (dt 1 ms) from rest: the tube swings under its tip load; the
 // counters give the time per step including the first factorisation and the tip's displacement
-// (to compare the accuracy of the tolerances). Argument: Newton tolerance per step as -log10
-// (6 = the default 1e-6).
+// (to compare the accuracy of the tolerances). Arguments: Newton tolerance per step as -log10
+// (6 = the default 1e-6); 1 = single-precision solves on reused matrices (the default), 0 =
+// every solve exact.
 void BM_DynamicsStep(benchmark::State& st) {
   TubeCase c(5000, make_corotational_shell());
   DynamicsParams p;
   p.dt = 1e-3;
   p.steps = 50;
   p.tolerance = std::pow(10.0, -static_cast<double>(st.range(0)));
+  p.single_precision_solves = st.range(1) == 1;
   const auto tip = select_vertices(c.mesh.positions(), SelectNearest{{Vec3(4, 0, 40)}})[0].index();
   int newton = 0, steps = 0, factorizations = 0;
   double tip_ux = 0.0;
@@ -227,7 +229,12 @@ BENCHMARK(BM_BackSubstitution)
     ->Args({20000, 0})
     ->Args({20000, 1})
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_DynamicsStep)->Arg(6)->Arg(4)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DynamicsStep)
+    ->Args({6, 1})
+    ->Args({6, 0})
+    ->Args({4, 1})
+    ->Args({3, 1})
+    ->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   // The same OpenBLAS kernels as the sutura program uses (why: blas_kernels.hpp).
   sutura::engine::restart_with_better_blas_kernels(argv);
