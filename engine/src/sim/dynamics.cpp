@@ -47,9 +47,9 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   Eigen::SparseMatrix<double> K_damp;
   bool have_factor = false;
   // Iterations on a reused matrix solve in single precision (DynamicsParams::
-  // single_precision_solves); cleared when the first reuse after a new matrix fails to halve
-  // the residual.
-  bool approximate_ok = params.single_precision_solves;
+  // single_precision_solves) when the current factorisation's single-precision solve agreed
+  // with its first, exact one (approximate_solve_agrees).
+  bool approximate_ok = false;
   double factor_h = 0.0;  // the step size the factorised matrix was built for
   double energy_scale = 0.0;
   Evaluation ev;
@@ -77,7 +77,6 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       return R;
     };
     double ref = -1.0, previous = -1.0;
-    int since_rebuild = -1;  // iterations since the matrix was rebuilt in this step; -1: not rebuilt
     // K_d may only change at the start of a step: changing it mid-step would move the root of
     // R while Newton chases it.
     const auto rebuild = [&](bool new_damping) {
@@ -105,22 +104,21 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       }
       // A matrix that no longer halves the residual is stale: rebuild it here, before it is
       // used, from the tangent at the current iterate (then this is a full Newton step).
+      bool fresh = false;
       if (!have_factor || (previous > 0.0 && rnorm > 0.5 * previous)) {
-        // The first reuse of a new matrix (a single-precision solve) did not halve the
-        // residual: solve exactly from now on.
-        if (since_rebuild == 1) approximate_ok = false;
         if (!rebuild(it == 0)) return "the step matrix is singular";
         R = residual();  // the damping term changed with K_d
         rnorm = R.norm();
-        since_rebuild = 0;
-      } else if (since_rebuild >= 0) {
-        ++since_rebuild;
+        fresh = true;
       }
       previous = rnorm;
       Eigen::VectorXd delta;
-      const bool exact = since_rebuild == 0 || !approximate_ok;
+      const bool exact = fresh || !approximate_ok;
       if (!(exact ? solver->solve(-R, delta) : solver->solve_approximately(-R, delta)))
         return "the linear solve failed: " + solver->last_note();
+      if (fresh)
+        approximate_ok =
+            params.single_precision_solves && approximate_solve_agrees(*solver, -R, delta);
       du += delta;
       apply_increment(state.shell, map.expand(delta), d);
       ev = evaluate(sys, map, state.shell, 1.0, false);

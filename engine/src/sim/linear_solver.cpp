@@ -178,6 +178,12 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const Pc
   throw InvalidArgument("unknown linear solver kind");
 }
 
+bool approximate_solve_agrees(LinearSolver& solver, const Eigen::VectorXd& b,
+                              const Eigen::VectorXd& exact) {
+  Eigen::VectorXd x;
+  return solver.solve_approximately(b, x) && (x - exact).norm() <= 1e-3 * exact.norm();
+}
+
 Eigen::SparseMatrix<double> shift_diagonal(const Eigen::SparseMatrix<double>& A,
                                            const Eigen::VectorXd& scale, double mu) {
   Eigen::SparseMatrix<double> out = A;

@@ -278,10 +278,12 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   bool collapsed_trial = false;
   // L-BFGS's initial inverse Hessian is the factorised tangent: solved exactly for a Newton
   // step, in single precision for a quasi-Newton step (single_precision_solves).
-  bool exact_h0 = true;
+  // The first step with each factorisation (a Newton step, or the first quasi-Newton step
+  // with one carried in) has no pairs yet, du = -H0 r: solved exactly, and checked against its
+  // single-precision solve (approximate_solve_agrees), which the later steps use if it agrees.
+  bool checked = false, approximate_ok = false;
   const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) {
-    return exact_h0 || !params.single_precision_solves ? solver.solve(q, z)
-                                                        : solver.solve_approximately(q, z);
+    return !checked || !approximate_ok ? solver.solve(q, z) : solver.solve_approximately(q, z);
   };
   for (int it = 0;; ++it) {
     const double rnorm = ev.residual.norm();
@@ -315,14 +317,19 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
                       : solver.factorize(ev.tangent)))
           return "the tangent stiffness is singular (is the structure constrained?)";
         lbfgs.clear();
+        checked = false;
         norms.assign(1, ev.residual.norm());
         since_factor = 0;
         fresh = true;
         need_tangent = false;
       }
-      exact_h0 = fresh;
       const bool solved = lbfgs.apply(-ev.residual, du, h0);
       if (fresh && !solved) return "the linear solve failed: " + solver.last_note();
+      if (solved && !checked) {
+        approximate_ok = params.single_precision_solves &&
+                         approximate_solve_agrees(solver, -ev.residual, du);
+        checked = true;
+      }
       if (fresh || (solved && du.dot(ev.residual) < 0.0)) break;
       need_tangent = true;
     }

@@ -34,8 +34,8 @@ struct DynamicsParams {
   /// precision (LinearSolver::solve_approximately): they are inexact by the matrix's age
   /// anyway and the residual is computed in double; at 5k elements such a solve takes about
   /// a third of the exact one's time. The first iteration on a new matrix solves exactly, and
-  /// a run whose first reuse after it fails to halve the residual solves exactly from then on
-  /// (a factor too coarse in single precision: cond(A) near 1e7). false: every solve exact.
+  /// the reuses stay exact when the single-precision solve of that first step does not agree
+  /// with it (approximate_solve_agrees). false: every solve exact.
   bool single_precision_solves = true;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   PcgParams pcg;

@@ -43,8 +43,8 @@ class LinearSolver {
   virtual bool factorize_indefinite(const Eigen::SparseMatrix<double>& A) { return factorize(A); }
   /// Solves A x = b with the last factorised A. Returns false on failure (PCG not converged).
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
-  /// Like solve, but the answer may carry a relative error of about cond(A) * 6e-8: Cholmod
-  /// solves with its factor rounded to single precision (about 1.5 times faster: the solve is
+  /// Like solve, but the answer may carry a relative error of about 1e-6: Cholmod
+  /// solves with its factor rounded to single precision (1.3 to 3 times faster: the solve is
   /// bound by reading the factor, single_precision_factor.hpp); the others solve exactly. For
   /// iterations that correct their own steps' error against a residual computed in double
   /// (quasi-Newton steps, modified Newton), never for a step that must be exact. The first call
@@ -63,6 +63,14 @@ class LinearSolver {
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const PcgParams& pcg = {});
+
+/// Whether `solver`'s solve_approximately of A x = b reproduces `exact` (its exact solve of
+/// the same system) to a relative 1e-3. Callers ask it once per factorisation, after the
+/// exact solve of a fresh factorisation's first step, before relying on approximate solves
+/// with that factorisation (a guard: no matrix met so far, nearly singular ones included,
+/// failed it; single_precision_factor.hpp). Cost: one approximate solve.
+bool approximate_solve_agrees(LinearSolver& solver, const Eigen::VectorXd& b,
+                              const Eigen::VectorXd& exact);
 
 /// A + mu diag(scale): the Levenberg-Marquardt shift of a tangent (mu > 0; scale = |diag A|)
 /// or its mirror (mu < 0). A must store its whole diagonal (an assembled tangent does).

@@ -58,8 +58,10 @@ struct StaticSolverParams {
   int quasi_newton_steps = 30;
   /// Quasi-Newton steps solve with the factorised tangent rounded to single precision
   /// (LinearSolver::solve_approximately): the pairs correct the initial inverse Hessian
-  /// anyway, and the solve reads half the bytes (13 against 17 ms at 20k elements). Newton
-  /// steps always solve exactly. false: every solve exact.
+  /// anyway, and the solve reads half the bytes (13 against 17 ms at 20k elements). The first
+  /// step with each factorisation (Newton steps among them) solves exactly, and the later ones
+  /// stay exact when its single-precision solve does not agree (approximate_solve_agrees).
+  /// false: every solve exact.
   bool single_precision_solves = true;
   /// A Newton trial state in which a triangle's area falls below this fraction of its rest
   /// area (min_area_ratio) counts as a failed trial, like a non-finite one: the line search
