@@ -47,8 +47,11 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   Eigen::SparseMatrix<double> K_damp;
   bool have_factor = false;
   // Iterations on a reused matrix solve in single precision (DynamicsParams::
-  // single_precision_solves) when the current factorisation's single-precision solve agreed
-  // with its first, exact one (approximate_solve_agrees).
+  // single_precision_solves; Cholmod only, the others solve exactly anyway) when the current
+  // factorisation's single-precision solve agreed with its first, exact one
+  // (approximate_solve_agrees).
+  const bool single_precision =
+      params.single_precision_solves && params.linear_solver == LinearSolverKind::Cholmod;
   bool approximate_ok = false;
   double factor_h = 0.0;  // the step size the factorised matrix was built for
   double energy_scale = 0.0;
@@ -116,9 +119,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       const bool exact = fresh || !approximate_ok;
       if (!(exact ? solver->solve(-R, delta) : solver->solve_approximately(-R, delta)))
         return "the linear solve failed: " + solver->last_note();
-      if (fresh)
-        approximate_ok =
-            params.single_precision_solves && approximate_solve_agrees(*solver, -R, delta);
+      if (fresh) approximate_ok = single_precision && approximate_solve_agrees(*solver, -R, delta);
       du += delta;
       apply_increment(state.shell, map.expand(delta), d);
       ev = evaluate(sys, map, state.shell, 1.0, false);

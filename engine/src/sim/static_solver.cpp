@@ -276,11 +276,13 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   int newton_steps = 0, since_factor = 0;
   double step_length = 1.0, first_work = -1.0, lm_shift = 0.0, work_done = 0.0;
   bool collapsed_trial = false;
-  // L-BFGS's initial inverse Hessian is the factorised tangent: solved exactly for a Newton
-  // step, in single precision for a quasi-Newton step (single_precision_solves).
-  // The first step with each factorisation (a Newton step, or the first quasi-Newton step
-  // with one carried in) has no pairs yet, du = -H0 r: solved exactly, and checked against its
-  // single-precision solve (approximate_solve_agrees), which the later steps use if it agrees.
+  // L-BFGS's initial inverse Hessian is the factorised tangent, solved in single precision for
+  // quasi-Newton steps (single_precision_solves; Cholmod only, the others solve exactly
+  // anyway). The first step with each factorisation (a Newton step, or the first quasi-Newton
+  // step with one carried in) has no pairs yet, du = -H0 r: it solves exactly, and is checked
+  // against its single-precision solve (approximate_solve_agrees), which the later steps use
+  // if it agrees.
+  const bool single_precision = params.single_precision_solves && qn_steps > 0;
   bool checked = false, approximate_ok = false;
   const auto h0 = [&](const Eigen::VectorXd& q, Eigen::VectorXd& z) {
     return !checked || !approximate_ok ? solver.solve(q, z) : solver.solve_approximately(q, z);
@@ -326,8 +328,8 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
       const bool solved = lbfgs.apply(-ev.residual, du, h0);
       if (fresh && !solved) return "the linear solve failed: " + solver.last_note();
       if (solved && !checked) {
-        approximate_ok = params.single_precision_solves &&
-                         approximate_solve_agrees(solver, -ev.residual, du);
+        approximate_ok =
+            single_precision && approximate_solve_agrees(solver, -ev.residual, du);
         checked = true;
       }
       if (fresh || (solved && du.dot(ev.residual) < 0.0)) break;
