@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "blas_threads.hpp"
+#include "serial_openmp.hpp"
 #include "single_precision_factor.hpp"
 #include "sutura/engine/errors.hpp"
 
@@ -85,8 +86,7 @@ class CholmodSolver final : public LinearSolver {
   bool factorize(const SpMat& A) override {
     note_.clear();
     single_current_ = false;
-    if (!cache_.same(A)) llt_.analyzePattern(A);
-    llt_.factorize(A);
+    cholesky(A);
     use_fallback_ = llt_.info() != Eigen::Success;
     id_ = use_fallback_ ? 0 : ++count_;
     if (!use_fallback_) return true;
@@ -98,8 +98,7 @@ class CholmodSolver final : public LinearSolver {
   bool factorize_definite(const SpMat& A) override {
     note_.clear();
     single_current_ = false;
-    if (!cache_.same(A)) llt_.analyzePattern(A);
-    llt_.factorize(A);
+    cholesky(A);
     use_fallback_ = false;
     const bool ok = llt_.info() == Eigen::Success;
     id_ = ok ? ++count_ : 0;
@@ -133,6 +132,12 @@ class CholmodSolver final : public LinearSolver {
   [[nodiscard]] std::uint64_t definite_factor_id() const override { return id_; }
 
  private:
+  void cholesky(const SpMat& A) {
+    const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
+    if (!cache_.same(A)) llt_.analyzePattern(A);
+    llt_.factorize(A);
+  }
+
   SupernodalLlt llt_;
   detail::SinglePrecisionFactor single_;
   bool single_current_ = false;  ///< single_ holds the current factorisation's values
