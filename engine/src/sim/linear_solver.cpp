@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "blas_threads.hpp"
+#include "parallel_cholesky.hpp"
 #include "serial_openmp.hpp"
 #include "single_precision_factor.hpp"
 #include "sutura/engine/errors.hpp"
@@ -76,6 +77,12 @@ class LdltSolver final : public LinearSolver {
 class SupernodalLlt : public Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> {
  public:
   [[nodiscard]] const cholmod_factor* factor() const { return m_cholmodFactor; }
+  // For a numeric factorisation done outside CHOLMOD into its factor (ParallelCholesky).
+  [[nodiscard]] cholmod_factor* mutable_factor() { return m_cholmodFactor; }
+  void set_factorised(bool ok) {
+    m_info = ok ? Eigen::Success : Eigen::NumericalIssue;
+    m_factorizationIsOk = true;
+  }
 };
 
 class CholmodSolver final : public LinearSolver {
@@ -132,13 +139,35 @@ class CholmodSolver final : public LinearSolver {
   [[nodiscard]] std::uint64_t definite_factor_id() const override { return id_; }
 
  private:
+  // The first numeric factorisation of each pattern is CHOLMOD's (it allocates the factor's
+  // values); later ones run on two threads (parallel_cholesky.hpp) when the factor is large
+  // enough to pay for them. One or the other for a given sequence of matrices: deterministic.
   void cholesky(const SpMat& A) {
-    const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
-    if (!cache_.same(A)) llt_.analyzePattern(A);
-    llt_.factorize(A);
+    if (!cache_.same(A)) {
+      const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
+      llt_.analyzePattern(A);
+      parallel_ = {};
+    }
+    if (parallel_.prepared()) {
+      llt_.set_factorised(parallel_.factorize(A, *llt_.mutable_factor()));
+      return;
+    }
+    {
+      const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
+      llt_.factorize(A);
+    }
+    const cholmod_factor* L = llt_.factor();
+    if (llt_.info() == Eigen::Success && L != nullptr && L->is_super &&
+        L->xsize >= kParallelFactorEntries)
+      parallel_.prepare(A, *L);
   }
 
+  // Below this many factor entries (about 2k elements) the second thread costs more than it
+  // saves.
+  static constexpr std::size_t kParallelFactorEntries = 300000;
+
   SupernodalLlt llt_;
+  detail::ParallelCholesky parallel_;
   detail::SinglePrecisionFactor single_;
   bool single_current_ = false;  ///< single_ holds the current factorisation's values
   LdltSolver fallback_;

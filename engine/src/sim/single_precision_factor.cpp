@@ -2,8 +2,6 @@
 
 #include <omp.h>
 
-#include <algorithm>
-#include <utility>
 
 #include "sutura/engine/errors.hpp"
 
@@ -23,10 +21,6 @@ const int* ints(const void* p) { return static_cast<const int*>(p); }
 
 // Below this many factor entries (about 1k elements) a second thread costs more than it saves.
 constexpr std::size_t kParallelEntries = 200000;
-// The split stops when the heavier half holds at most this share of the halves' entries.
-constexpr double kBalance = 0.55;
-// At most this many supernodes are moved from the halves to the top while balancing.
-constexpr int kMaxTopSupernodes = 1000;
 
 }  // namespace
 
@@ -35,92 +29,10 @@ void SinglePrecisionFactor::assign(const cholmod_factor& L) {
     throw InvalidArgument("single-precision factor: needs a real supernodal LL^T factor");
   const auto* x = static_cast<const double*>(L.x);
   values_.assign(x, x + L.xsize);
-  split(L);
-}
-
-// The supernodal elimination tree: the parent of a supernode is the one holding its first
-// off-diagonal row (all its off-diagonal rows belong to ancestors). Starting from the roots,
-// the heaviest subtree of the frontier is moved to the top, its children taking its place,
-// until the frontier's subtrees fall into two halves of about equal weight (largest first,
-// each into the lighter half). With a nested-dissection ordering (CHOLMOD's METIS) that moves
-// the top separators.
-void SinglePrecisionFactor::split(const cholmod_factor& L) {
-  const auto n = static_cast<int>(L.n);
-  const auto nsuper = static_cast<int>(L.nsuper);
-  const int* super = ints(L.super);
-  const int* row_start = ints(L.pi);
-  const int* rows = ints(L.s);
-  std::vector<int> column_super(static_cast<std::size_t>(n));
-  for (int s = 0; s < nsuper; ++s)
-    for (int k = super[s]; k < super[s + 1]; ++k) column_super[k] = s;
-  std::vector<int> parent(static_cast<std::size_t>(nsuper), -1);
-  std::vector<double> weight(static_cast<std::size_t>(nsuper), 0.0);  // entries in the subtree
-  std::vector<int> child_count(static_cast<std::size_t>(nsuper) + 1, 0);
-  bool postordered = true;
-  for (int s = 0; s < nsuper; ++s) {
-    const int ncol = super[s + 1] - super[s];
-    const int nrow = row_start[s + 1] - row_start[s];
-    weight[s] += static_cast<double>(nrow) * ncol;
-    if (nrow > ncol) {
-      const int* first = rows + row_start[s] + ncol;
-      parent[s] = column_super[*std::min_element(first, rows + row_start[s + 1])];
-      if (parent[s] <= s) postordered = false;
-    }
-  }
-  halves_[0].clear();
-  halves_[1].clear();
-  top_.clear();
-  // Ancestors after descendants is what the solves' order relies on; CHOLMOD's supernodes are
-  // always so numbered. Should a factor not be, everything is top: one thread, CHOLMOD's order.
-  if (!postordered) {
-    for (int s = 0; s < nsuper; ++s) top_.push_back(s);
-  } else {
-    for (int s = 0; s < nsuper; ++s)
-      if (parent[s] >= 0) weight[parent[s]] += weight[s], ++child_count[parent[s] + 1];
-    for (int s = 0; s < nsuper; ++s) child_count[s + 1] += child_count[s];
-    std::vector<int> children(static_cast<std::size_t>(child_count[nsuper]));
-    {
-      std::vector<int> next(child_count.begin(), child_count.end() - 1);
-      for (int s = 0; s < nsuper; ++s)
-        if (parent[s] >= 0) children[next[parent[s]]++] = s;
-    }
-    constexpr int kTop = -1;
-    std::vector<int> group(static_cast<std::size_t>(nsuper), -2);  // -2: inherits its parent's
-    std::vector<int> frontier;
-    for (int s = 0; s < nsuper; ++s)
-      if (parent[s] < 0) frontier.push_back(s);
-    const auto heavier_first = [&](int a, int b) {
-      return weight[a] != weight[b] ? weight[a] > weight[b] : a < b;
-    };
-    std::vector<int> bin_of;
-    for (int moved = 0;; ++moved) {
-      std::sort(frontier.begin(), frontier.end(), heavier_first);
-      double bins[2] = {0.0, 0.0};
-      bin_of.assign(frontier.size(), 0);
-      for (std::size_t i = 0; i < frontier.size(); ++i) {
-        const int b = bins[1] < bins[0] ? 1 : 0;
-        bin_of[i] = b;
-        bins[b] += weight[frontier[i]];
-      }
-      const double total = bins[0] + bins[1];
-      const int heaviest = frontier.empty() ? -1 : frontier.front();
-      if (total == 0.0 || std::max(bins[0], bins[1]) <= kBalance * total ||
-          moved == kMaxTopSupernodes || child_count[heaviest] == child_count[heaviest + 1])
-        break;
-      group[heaviest] = kTop;
-      frontier.erase(frontier.begin());
-      frontier.insert(frontier.end(), children.begin() + child_count[heaviest],
-                      children.begin() + child_count[heaviest + 1]);
-    }
-    for (std::size_t i = 0; i < frontier.size(); ++i) group[frontier[i]] = bin_of[i];
-    for (int s = nsuper - 1; s >= 0; --s)
-      if (group[s] == -2) group[s] = parent[s] >= 0 ? group[parent[s]] : kTop;
-    for (int s = 0; s < nsuper; ++s) (group[s] == kTop ? top_ : halves_[group[s]]).push_back(s);
-  }
-  is_top_row_.assign(static_cast<std::size_t>(n), 0);
+  split_ = split_supernode_tree(L);
   top_columns_.clear();
-  for (const int s : top_)
-    for (int k = super[s]; k < super[s + 1]; ++k) is_top_row_[k] = 1, top_columns_.push_back(k);
+  for (std::size_t k = 0; k < split_.is_top_column.size(); ++k)
+    if (split_.is_top_column[k]) top_columns_.push_back(static_cast<int>(k));
 }
 
 // Forward, L y = P b, over `supernodes` in increasing order: the diagonal block's triangular
@@ -150,7 +62,7 @@ void SinglePrecisionFactor::forward(const cholmod_factor& L, const std::vector<i
       for (int i = 0; i < below; ++i) y_[r[i]] -= work[i];
     } else {
       for (int i = 0; i < below; ++i) {
-        if (is_top_row_[r[i]]) spill[r[i]] += work[i];
+        if (split_.is_top_column[r[i]]) spill[r[i]] += work[i];
         else y_[r[i]] -= work[i];
       }
     }
@@ -189,7 +101,7 @@ void SinglePrecisionFactor::solve(const cholmod_factor& L, const Eigen::VectorXd
                                   Eigen::VectorXd& x) {
   const auto n = static_cast<Eigen::Index>(L.n);
   if (b.size() != n) throw InvalidArgument("single-precision factor: right-hand side size");
-  if (values_.size() != L.xsize || is_top_row_.size() != L.n)
+  if (values_.size() != L.xsize || split_.is_top_column.size() != L.n)
     throw InvalidArgument("single-precision factor: assign() the factor before solving");
   const int* perm = ints(L.Perm);
   y_.resize(static_cast<std::size_t>(n));
@@ -201,15 +113,15 @@ void SinglePrecisionFactor::solve(const cholmod_factor& L, const Eigen::VectorXd
     for (const int t : top_columns_) spill_[h][t] = 0.0f;
   }
   const bool parallel = omp_get_max_threads() > 1 && values_.size() >= kParallelEntries &&
-                        !halves_[0].empty() && !halves_[1].empty();
+                        !split_.halves[0].empty() && !split_.halves[1].empty();
 #pragma omp parallel for num_threads(2) schedule(static, 1) if (parallel)
-  for (int h = 0; h < 2; ++h) forward(L, halves_[h], h);
+  for (int h = 0; h < 2; ++h) forward(L, split_.halves[h], h);
   for (int h = 0; h < 2; ++h)
     for (const int t : top_columns_) y_[t] -= spill_[h][t];
-  forward(L, top_, -1);
-  backward(L, top_, -1);
+  forward(L, split_.top, -1);
+  backward(L, split_.top, -1);
 #pragma omp parallel for num_threads(2) schedule(static, 1) if (parallel)
-  for (int h = 0; h < 2; ++h) backward(L, halves_[h], h);
+  for (int h = 0; h < 2; ++h) backward(L, split_.halves[h], h);
   x.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) x[perm ? perm[k] : k] = static_cast<double>(y_[k]);
 }

@@ -9,10 +9,9 @@
 // the exact solve, so they read half the bytes. Measured (2026-12-02, docs/performance.md):
 // 1.2-2.2 ms against CHOLMOD's 2.2-3.5 ms at 5k elements, 10-13 against 17-20 ms at 20k.
 //
-// Two threads: the supernodal elimination tree is split into two halves, unions of disjoint
-// subtrees with about equal numbers of factor entries, and a top (the ancestors of both, the
-// nested-dissection separators). The halves' solves touch disjoint rows except the top's, so
-// they run at the same time: forward, each half first collects its updates of top rows in its
+// Two threads: the supernodal elimination tree is split into two halves and a top
+// (supernode_tree.hpp). The halves' solves touch disjoint rows except the top's, so they run at
+// the same time: forward, each half first collects its updates of top rows in its
 // own buffer, added to the top rows afterwards (first half, then second); backward, the top is
 // solved first and the halves then only read it. One core's memory traffic is the limit, so a
 // second core nearly halves the time (13 -> 7 ms at 20k elements, docs/performance.md).
@@ -26,11 +25,12 @@
 // elements and on the Sze strip's, and 3e-7 on a grid Laplacian shifted to cond 1e11
 // (tests/engine/sim/test_linear_solver.cpp).
 #include <array>
-#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
 #include <cholmod.h>
+
+#include "supernode_tree.hpp"
 
 namespace sutura::engine::detail {
 
@@ -47,22 +47,14 @@ class SinglePrecisionFactor {
   /// factor is large enough to pay for them; the result does not depend on it.
   void solve(const cholmod_factor& L, const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
-  /// The supernodes of each half and of the top, each list in increasing order (exposed for
-  /// the tests of the split).
-  [[nodiscard]] const std::array<std::vector<int>, 2>& halves() const { return halves_; }
-  [[nodiscard]] const std::vector<int>& top() const { return top_; }
-
  private:
-  void split(const cholmod_factor& L);
   void forward(const cholmod_factor& L, const std::vector<int>& supernodes, int half);
   void backward(const cholmod_factor& L, const std::vector<int>& supernodes, int half);
 
   std::vector<float> values_;  ///< L.x rounded, same layout (supernode by supernode)
   std::vector<float> y_;       ///< permuted right-hand side, then solution
-  std::array<std::vector<int>, 2> halves_;
-  std::vector<int> top_;
-  std::vector<int> top_columns_;          ///< the columns (rows) of the top's supernodes
-  std::vector<std::uint8_t> is_top_row_;  ///< per column: 1 if it belongs to the top
+  SupernodeSplit split_;
+  std::vector<int> top_columns_;  ///< the columns (rows) of the top's supernodes
   std::array<std::vector<float>, 2> spill_;  ///< per half: its updates of top rows (forward)
   std::array<std::vector<float>, 2> work_;   ///< per half: one supernode's off-diagonal rows
 };
