@@ -148,7 +148,7 @@ class CholmodSolver final : public LinearSolver {
       llt_.analyzePattern(A);
       parallel_ = {};
     }
-    if (parallel_.prepared()) {
+    if (parallel_.prepared() && A.isCompressed()) {
       llt_.set_factorised(parallel_.factorize(A, *llt_.mutable_factor()));
       return;
     }

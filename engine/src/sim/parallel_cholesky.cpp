@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <exception>
 #include <stdexcept>
 
 #include "blas_threads.hpp"
@@ -34,8 +35,9 @@ constexpr int kTopGroup = 2;
 void ParallelCholesky::prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L) {
   split_ = {};
   if (!L.is_super || !L.is_ll || L.xtype != CHOLMOD_REAL || L.itype != CHOLMOD_INT ||
-      L.x == nullptr || A.rows() != static_cast<Eigen::Index>(L.n) || !A.isCompressed())
+      L.x == nullptr || A.rows() != static_cast<Eigen::Index>(L.n))
     throw std::logic_error("parallel Cholesky: needs a numeric supernodal LL^T factor of A");
+  if (!A.isCompressed()) return;  // left to CHOLMOD: the fill map indexes compressed values
   const auto n = static_cast<int>(L.n);
   const auto nsuper = static_cast<int>(L.nsuper);
   const int* super = ints(L.super);
@@ -156,14 +158,23 @@ int ParallelCholesky::factorize_group(const Eigen::SparseMatrix<double>& A, chol
 }
 
 bool ParallelCholesky::factorize(const Eigen::SparseMatrix<double>& A, cholmod_factor& L) {
-  if (!prepared() || A.rows() != static_cast<Eigen::Index>(L.n))
+  if (!prepared() || A.rows() != static_cast<Eigen::Index>(L.n) || !A.isCompressed())
     throw std::logic_error("parallel Cholesky: prepare() for this structure first");
   const SingleThreadedBlas one_thread;  // each half's kernels on its own thread
   for (int h = 0; h < 2; ++h) top_copy_[h].assign(static_cast<std::size_t>(top_size_), 0.0);
   int failed[3] = {-1, -1, -1};  // per group: the column whose pivot failed
   const bool parallel = omp_get_max_threads() > 1;
+  std::exception_ptr error[2];  // an exception must not leave an OpenMP region
 #pragma omp parallel for num_threads(2) schedule(static, 1) if (parallel)
-  for (int h = 0; h < 2; ++h) failed[h] = factorize_group(A, L, h);
+  for (int h = 0; h < 2; ++h) {
+    try {
+      failed[h] = factorize_group(A, L, h);
+    } catch (...) {
+      error[h] = std::current_exception();
+    }
+  }
+  for (const auto& e : error)
+    if (e) std::rethrow_exception(e);
   if (failed[0] < 0 && failed[1] < 0) failed[kTopGroup] = factorize_group(A, L, kTopGroup);
   int minor = static_cast<int>(L.n);
   for (const int f : failed)

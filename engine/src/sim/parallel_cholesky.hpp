@@ -36,12 +36,15 @@ class ParallelCholesky {
  public:
   /// Prepares for the structure of `L` (CHOLMOD's supernodal LL^T factor of A's pattern, with
   /// its values allocated: after a first numeric factorisation by CHOLMOD) and A's pattern.
-  /// Must be called again after any new symbolic analysis. Cost O(nnz(A) log + nnz(L.s)).
+  /// Must be called again after any new symbolic analysis. Leaves it unprepared (prepared()
+  /// false: keep factorising with CHOLMOD) if A is not compressed or L's row lists are not
+  /// increasing. Cost O(nnz(A) log + nnz(L.s)).
   void prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L);
   [[nodiscard]] bool prepared() const { return !split_.column_super.empty(); }
   /// Overwrites L's values with the Cholesky factor of P A P^T (A symmetric, its lower
   /// triangle used; A and L with the structures prepared for). Returns false if A is not
   /// positive definite (L's values are then meaningless; L.minor: a column where it failed).
+  /// A must be compressed.
   bool factorize(const Eigen::SparseMatrix<double>& A, cholmod_factor& L);
 
  private:
