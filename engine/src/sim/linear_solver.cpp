@@ -139,27 +139,27 @@ class CholmodSolver final : public LinearSolver {
   [[nodiscard]] std::uint64_t definite_factor_id() const override { return id_; }
 
  private:
-  // The first numeric factorisation of each pattern is CHOLMOD's (it allocates the factor's
-  // values); later ones run on two threads (parallel_cholesky.hpp) when the factor is large
-  // enough to pay for them. One or the other for a given sequence of matrices: deterministic.
+  // Factors large enough to pay for a second thread (kParallelFactorEntries) are factorised
+  // on two threads (parallel_cholesky.hpp) into CHOLMOD's factor object, its values allocated
+  // by converting the symbolic factor after each analysis; smaller ones, and any factor the
+  // parallel code cannot take, by CHOLMOD. Which one depends on the pattern only:
+  // deterministic.
   void cholesky(const SpMat& A) {
     if (!cache_.same(A)) {
       const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
       llt_.analyzePattern(A);
       parallel_ = {};
+      cholmod_factor* L = llt_.mutable_factor();
+      if (L != nullptr && L->is_super && L->xsize >= kParallelFactorEntries && A.isCompressed() &&
+          cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, L, &llt_.cholmod()) != 0)
+        parallel_.prepare(A, *L);
     }
     if (parallel_.prepared() && A.isCompressed()) {
       llt_.set_factorised(parallel_.factorize(A, *llt_.mutable_factor()));
       return;
     }
-    {
-      const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
-      llt_.factorize(A);
-    }
-    const cholmod_factor* L = llt_.factor();
-    if (llt_.info() == Eigen::Success && L != nullptr && L->is_super &&
-        L->xsize >= kParallelFactorEntries)
-      parallel_.prepare(A, *L);
+    const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
+    llt_.factorize(A);
   }
 
   // Below this many factor entries (about 2k elements) the second thread costs more than it

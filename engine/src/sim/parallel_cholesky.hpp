@@ -1,6 +1,6 @@
 #pragma once
 // Numeric supernodal Cholesky factorisation on two threads, on CHOLMOD's symbolic analysis
-// (private to engine/src/sim; used by the CHOLMOD linear solver for refactorisations).
+// (private to engine/src/sim; used by the CHOLMOD linear solver for large factors).
 //
 // Why: CHOLMOD's numeric factorisation works through the supernodes one after the other; its
 // parallelism is OpenBLAS's, inside each dense block, and most blocks of a shell tangent are
@@ -35,7 +35,8 @@ namespace sutura::engine::detail {
 class ParallelCholesky {
  public:
   /// Prepares for the structure of `L` (CHOLMOD's supernodal LL^T factor of A's pattern, with
-  /// its values allocated: after a first numeric factorisation by CHOLMOD) and A's pattern.
+  /// its values allocated: after a numeric factorisation by CHOLMOD, or the symbolic factor
+  /// converted by cholmod_change_factor) and A's pattern.
   /// Must be called again after any new symbolic analysis. Leaves it unprepared (prepared()
   /// false: keep factorising with CHOLMOD) if A is not compressed or L's row lists are not
   /// increasing. Cost O(nnz(A) log + nnz(L.s)).
