@@ -14,7 +14,7 @@
 // the same time: forward, each half first collects its updates of top rows in its
 // own buffer, added to the top rows afterwards (first half, then second); backward, the top is
 // solved first and the halves then only read it. One core's memory traffic is the limit, so a
-// second core nearly halves the time (13 -> 7 ms at 20k elements, docs/performance.md).
+// second core halves the time or better (12.7 -> 5.1-7.3 ms at 20k elements, docs/performance.md).
 // Deterministic and independent of the thread count: the split depends on the factor's
 // structure only, and one thread runs the same operations in the same order, half after half.
 //
