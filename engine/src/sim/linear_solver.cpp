@@ -132,7 +132,7 @@ class CholmodSolver final : public LinearSolver {
       single_.assign(*llt_.factor());
       single_current_ = true;
     }
-    single_.solve(*llt_.factor(), b, x);
+    single_.solve(*llt_.factor(), split_, b, x);
     return x.allFinite();
   }
   [[nodiscard]] std::string last_note() const override { return note_; }
@@ -143,16 +143,19 @@ class CholmodSolver final : public LinearSolver {
   // on two threads (parallel_cholesky.hpp) into CHOLMOD's factor object, its values allocated
   // by converting the symbolic factor after each analysis; smaller ones, and any factor the
   // parallel code cannot take, by CHOLMOD. Which one depends on the pattern only:
-  // deterministic.
+  // deterministic. The tree's split, which the two-thread factorisation and the
+  // single-precision solves share, is made once per analysis.
   void cholesky(const SpMat& A) {
     if (!cache_.same(A)) {
       const detail::SerialOpenMp serial;  // why: serial_openmp.hpp
       llt_.analyzePattern(A);
       parallel_ = {};
+      split_ = {};
       cholmod_factor* L = llt_.mutable_factor();
+      if (L != nullptr && L->is_super) split_ = detail::split_supernode_tree(*L);
       if (L != nullptr && L->is_super && L->xsize >= kParallelFactorEntries && A.isCompressed() &&
           cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, L, &llt_.cholmod()) != 0)
-        parallel_.prepare(A, *L);
+        parallel_.prepare(A, *L, split_);
     }
     if (parallel_.prepared() && A.isCompressed()) {
       llt_.set_factorised(parallel_.factorize(A, *llt_.mutable_factor()));
@@ -168,6 +171,7 @@ class CholmodSolver final : public LinearSolver {
   static constexpr std::size_t kParallelFactorEntries = 300000;
 
   SupernodalLlt llt_;
+  detail::SupernodeSplit split_;  ///< of llt_'s symbolic factor
   detail::ParallelCholesky parallel_;
   detail::SinglePrecisionFactor single_;
   bool single_current_ = false;  ///< single_ holds the current factorisation's values

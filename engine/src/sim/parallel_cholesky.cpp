@@ -26,31 +26,28 @@ namespace sutura::engine::detail {
 
 namespace {
 
-const int* ints(const void* p) { return static_cast<const int*>(p); }
-
 constexpr int kTopGroup = 2;
 
 }  // namespace
 
-void ParallelCholesky::prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L) {
-  split_ = {};
+void ParallelCholesky::prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L,
+                               const SupernodeSplit& split) {
+  split_ = nullptr;
   if (!L.is_super || !L.is_ll || L.xtype != CHOLMOD_REAL || L.itype != CHOLMOD_INT ||
       L.x == nullptr || A.rows() != static_cast<Eigen::Index>(L.n))
     throw std::logic_error("parallel Cholesky: needs a numeric supernodal LL^T factor of A");
   if (!A.isCompressed()) return;  // left to CHOLMOD: the fill map indexes compressed values
   const auto n = static_cast<int>(L.n);
   const auto nsuper = static_cast<int>(L.nsuper);
-  const int* super = ints(L.super);
-  const int* row_start = ints(L.pi);
-  const int* value_start = ints(L.px);
-  const int* rows = ints(L.s);
-  const int* perm = ints(L.Perm);
+  const SupernodalArrays a(L);
+  const int* row_start = a.row_start;
+  const int* rows = a.rows;
+  const auto* perm = static_cast<const int*>(L.Perm);
   // The fan-out finds an update's rows in its target's row list by one merge walk: both must
   // be increasing. CHOLMOD's are; a factor whose are not is left to CHOLMOD (not prepared).
   for (int s = 0; s < nsuper; ++s)
     for (int p = row_start[s] + 1; p < row_start[s + 1]; ++p)
       if (rows[p] <= rows[p - 1]) return;
-  SupernodeSplit split = split_supernode_tree(L);
   std::vector<int> group(static_cast<std::size_t>(nsuper), kTopGroup);
   for (int h = 0; h < 2; ++h)
     for (const int s : split.halves[h]) group[s] = h;
@@ -58,7 +55,7 @@ void ParallelCholesky::prepare(const Eigen::SparseMatrix<double>& A, const cholm
   top_size_ = 0;
   for (const int s : split.top) {
     top_offset_[s] = top_size_;
-    top_size_ += static_cast<std::int64_t>(row_start[s + 1] - row_start[s]) * (super[s + 1] - super[s]);
+    top_size_ += a.block_size(s);
   }
   std::vector<int> inverse(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) inverse[perm ? perm[k] : k] = k;
@@ -68,53 +65,50 @@ void ParallelCholesky::prepare(const Eigen::SparseMatrix<double>& A, const cholm
   for (int j = 0; j < n; ++j) {
     for (int e = outer[j]; e < outer[j + 1]; ++e) {
       if (inner[e] < j) continue;  // the lower triangle, as CHOLMOD reads A
-      const int a = inverse[inner[e]], b = inverse[j];
-      const int r = std::max(a, b), c = std::min(a, b);
+      const int p = inverse[inner[e]], q = inverse[j];
+      const int r = std::max(p, q), c = std::min(p, q);
       const int s = split.column_super[c];
       const int* first = rows + row_start[s];
       const int* last = rows + row_start[s + 1];
       const int* at = std::lower_bound(first, last, r);
       if (at == last || *at != r)
         throw std::logic_error("parallel Cholesky: an entry of A is outside the factor's pattern");
-      const std::int64_t nrow = row_start[s + 1] - row_start[s];
-      fill_[group[s]].emplace_back(e, value_start[s] + (c - super[s]) * nrow + (at - first));
+      fill_[group[s]].emplace_back(e, a.value_start[s] +
+                                          static_cast<std::int64_t>(c - a.super[s]) * a.nrow(s) +
+                                          (at - first));
     }
   }
-  split_ = std::move(split);
+  split_ = &split;
 }
 
 int ParallelCholesky::factorize_group(const Eigen::SparseMatrix<double>& A, cholmod_factor& L,
                                       int g) {
-  const int* super = ints(L.super);
-  const int* row_start = ints(L.pi);
-  const int* value_start = ints(L.px);
-  const int* rows = ints(L.s);
+  const SupernodalArrays a(L);
+  const int* super = a.super;
+  const int* row_start = a.row_start;
+  const int* value_start = a.value_start;
+  const int* rows = a.rows;
+  const SupernodeSplit& split = *split_;
   auto* x = static_cast<double*>(L.x);
-  const std::vector<int>& supernodes = g == kTopGroup ? split_.top : split_.halves[g];
+  const std::vector<int>& supernodes = g == kTopGroup ? split.top : split.halves[g];
   // A's entries into the zeroed blocks; the top also takes both halves' updates.
-  for (const int s : supernodes) {
-    const std::int64_t size =
-        static_cast<std::int64_t>(row_start[s + 1] - row_start[s]) * (super[s + 1] - super[s]);
-    std::fill(x + value_start[s], x + value_start[s] + size, 0.0);
-  }
-  const double* a = A.valuePtr();
-  for (const auto& [from, to] : fill_[g]) x[to] = a[from];
+  for (const int s : supernodes)
+    std::fill(x + value_start[s], x + value_start[s] + a.block_size(s), 0.0);
+  const double* values = A.valuePtr();
+  for (const auto& [from, to] : fill_[g]) x[to] = values[from];
   if (g == kTopGroup) {
     for (int h = 0; h < 2; ++h)
-      for (const int s : split_.top) {
-        const std::int64_t size =
-            static_cast<std::int64_t>(row_start[s + 1] - row_start[s]) * (super[s + 1] - super[s]);
+      for (const int s : split.top) {
         const double* copy = top_copy_[h].data() + top_offset_[s];
         double* block = x + value_start[s];
-        for (std::int64_t k = 0; k < size; ++k) block[k] += copy[k];
+        for (std::int64_t k = 0; k < a.block_size(s); ++k) block[k] += copy[k];
       }
   }
   std::vector<double>& update = update_[g == kTopGroup ? 0 : g];
   std::vector<int>& relative = relative_[g == kTopGroup ? 0 : g];
   const double one = 1.0, zero = 0.0;
   for (const int s : supernodes) {
-    const int k1 = super[s], ncol = super[s + 1] - k1;
-    const int nrow = row_start[s + 1] - row_start[s], below = nrow - ncol;
+    const int k1 = super[s], ncol = a.ncol(s), nrow = a.nrow(s), below = nrow - ncol;
     double* block = x + value_start[s];
     int info = 0;
     dpotrf_("L", &ncol, block, &nrow, &info);
@@ -124,7 +118,7 @@ int ParallelCholesky::factorize_group(const Eigen::SparseMatrix<double>& A, chol
     // Fan-out: the rows below, in runs that belong to one ancestor t each.
     const int* r = rows + row_start[s] + ncol;
     for (int j = 0; j < below;) {
-      const int t = split_.column_super[r[j]];
+      const int t = split.column_super[r[j]];
       int e = j;
       while (e < below && r[e] < super[t + 1]) ++e;
       const int m = below - j, width = e - j, rest = m - width;
@@ -135,7 +129,7 @@ int ParallelCholesky::factorize_group(const Eigen::SparseMatrix<double>& A, chol
       if (rest > 0)
         dgemm_("N", "T", &rest, &width, &ncol, &one, block + ncol + e, &nrow, block + ncol + j,
                &nrow, &zero, update.data() + width, &m);
-      const int trow = row_start[t + 1] - row_start[t];
+      const int trow = a.nrow(t);
       const int* target_rows = rows + row_start[t];
       relative.resize(static_cast<std::size_t>(m));
       for (int i = 0, p = 0; i < m; ++i) {
@@ -143,7 +137,7 @@ int ParallelCholesky::factorize_group(const Eigen::SparseMatrix<double>& A, chol
         if (p == trow) throw std::logic_error("parallel Cholesky: an update outside its target");
         relative[i] = p;
       }
-      double* target = (g != kTopGroup && split_.is_top_column[r[j]])
+      double* target = (g != kTopGroup && split.is_top_column[r[j]])
                            ? top_copy_[g].data() + top_offset_[t]
                            : x + value_start[t];
       for (int c = 0; c < width; ++c) {

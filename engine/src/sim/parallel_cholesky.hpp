@@ -36,12 +36,14 @@ class ParallelCholesky {
  public:
   /// Prepares for the structure of `L` (CHOLMOD's supernodal LL^T factor of A's pattern, with
   /// its values allocated: after a numeric factorisation by CHOLMOD, or the symbolic factor
-  /// converted by cholmod_change_factor) and A's pattern.
+  /// converted by cholmod_change_factor), its split (split_supernode_tree; kept by reference:
+  /// it must outlive this object's use of it) and A's pattern.
   /// Must be called again after any new symbolic analysis. Leaves it unprepared (prepared()
   /// false: keep factorising with CHOLMOD) if A is not compressed or L's row lists are not
   /// increasing. Cost O(nnz(A) log + nnz(L.s)).
-  void prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L);
-  [[nodiscard]] bool prepared() const { return !split_.column_super.empty(); }
+  void prepare(const Eigen::SparseMatrix<double>& A, const cholmod_factor& L,
+               const SupernodeSplit& split);
+  [[nodiscard]] bool prepared() const { return split_ != nullptr; }
   /// Overwrites L's values with the Cholesky factor of P A P^T (A symmetric, its lower
   /// triangle used; A and L with the structures prepared for). Returns false if A is not
   /// positive definite (L's values are then meaningless; L.minor: a column where it failed).
@@ -54,7 +56,7 @@ class ParallelCholesky {
   // positive (the matrix is not positive definite), or -1.
   int factorize_group(const Eigen::SparseMatrix<double>& A, cholmod_factor& L, int group);
 
-  SupernodeSplit split_;
+  const SupernodeSplit* split_ = nullptr;  ///< the prepared structure's split
   // Per group (the two halves, then the top): where each entry of A's lower triangle goes,
   // as pairs (index into A's values, index into L's values).
   std::vector<std::pair<std::int64_t, std::int64_t>> fill_[3];

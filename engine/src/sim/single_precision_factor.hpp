@@ -37,24 +37,26 @@ namespace sutura::engine::detail {
 class SinglePrecisionFactor {
  public:
   /// Rounds the values of `L` (supernodal LL^T, as CHOLMOD's supernodal factorisation leaves
-  /// it) to single precision and splits its elimination tree. Cost O(nnz(L)); memory 4 bytes
-  /// per entry.
+  /// it) to single precision. Cost O(nnz(L)); memory 4 bytes per entry.
   void assign(const cholmod_factor& L);
   /// x = A^-1 b approximately, A = P^T L L^T P with the values last assigned and the structure
   /// (supernodes, row indices, permutation) of `L`, which must be the factor assigned from
-  /// (numeric refactorisations change only values: assign again after each). b.size() = L.n.
-  /// Uses two OpenMP threads when the calling thread may (omp_get_max_threads() > 1) and the
-  /// factor is large enough to pay for them; the result does not depend on it.
-  void solve(const cholmod_factor& L, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// (numeric refactorisations change only values: assign again after each); `split` is that
+  /// structure's split (split_supernode_tree). b.size() = L.n. Uses two OpenMP threads when the
+  /// calling thread may (omp_get_max_threads() > 1) and the factor is large enough to pay for
+  /// them; the result does not depend on it.
+  void solve(const cholmod_factor& L, const SupernodeSplit& split, const Eigen::VectorXd& b,
+             Eigen::VectorXd& x);
 
  private:
-  void forward(const cholmod_factor& L, const std::vector<int>& supernodes, int half);
-  void backward(const cholmod_factor& L, const std::vector<int>& supernodes, int half);
+  // One group of supernodes: half 0 or 1 (whose updates of top rows go to its spill buffer),
+  // or -1 for the top.
+  void forward(const SupernodalArrays& a, const SupernodeSplit& split,
+               const std::vector<int>& supernodes, int half);
+  void backward(const SupernodalArrays& a, const std::vector<int>& supernodes, int half);
 
   std::vector<float> values_;  ///< L.x rounded, same layout (supernode by supernode)
   std::vector<float> y_;       ///< permuted right-hand side, then solution
-  SupernodeSplit split_;
-  std::vector<int> top_columns_;  ///< the columns (rows) of the top's supernodes
   std::array<std::vector<float>, 2> spill_;  ///< per half: its updates of top rows (forward)
   std::array<std::vector<float>, 2> work_;   ///< per half: one supernode's off-diagonal rows
 };

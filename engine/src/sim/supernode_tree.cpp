@@ -7,8 +7,6 @@ namespace sutura::engine::detail {
 
 namespace {
 
-const int* ints(const void* p) { return static_cast<const int*>(p); }
-
 // The split stops when the heavier half holds at most this share of the halves' entries.
 constexpr double kBalance = 0.55;
 // At most this many supernodes are moved from the halves to the top while balancing.
@@ -20,9 +18,10 @@ SupernodeSplit split_supernode_tree(const cholmod_factor& L) {
   SupernodeSplit out;
   const auto n = static_cast<int>(L.n);
   const auto nsuper = static_cast<int>(L.nsuper);
-  const int* super = ints(L.super);
-  const int* row_start = ints(L.pi);
-  const int* rows = ints(L.s);
+  const SupernodalArrays a(L);
+  const int* super = a.super;
+  const int* row_start = a.row_start;
+  const int* rows = a.rows;
   std::vector<int> column_super(static_cast<std::size_t>(n));
   for (int s = 0; s < nsuper; ++s)
     for (int k = super[s]; k < super[s + 1]; ++k) column_super[k] = s;
@@ -31,10 +30,9 @@ SupernodeSplit split_supernode_tree(const cholmod_factor& L) {
   std::vector<int> child_count(static_cast<std::size_t>(nsuper) + 1, 0);
   bool postordered = true;
   for (int s = 0; s < nsuper; ++s) {
-    const int ncol = super[s + 1] - super[s];
-    const int nrow = row_start[s + 1] - row_start[s];
-    weight[s] += static_cast<double>(nrow) * ncol;
-    if (nrow > ncol) {
+    const int ncol = a.ncol(s);
+    weight[s] += static_cast<double>(a.block_size(s));
+    if (a.nrow(s) > ncol) {
       const int* first = rows + row_start[s] + ncol;
       parent[s] = column_super[*std::min_element(first, rows + row_start[s + 1])];
       if (parent[s] <= s) postordered = false;
@@ -90,7 +88,8 @@ SupernodeSplit split_supernode_tree(const cholmod_factor& L) {
   }
   out.is_top_column.assign(static_cast<std::size_t>(n), 0);
   for (const int s : out.top)
-    for (int k = super[s]; k < super[s + 1]; ++k) out.is_top_column[k] = 1;
+    for (int k = super[s]; k < super[s + 1]; ++k)
+      out.is_top_column[k] = 1, out.top_columns.push_back(k);
   out.column_super = std::move(column_super);
   return out;
 }

@@ -29,6 +29,4 @@ inline Eigen::SparseMatrix<double> grid_laplacian(int n, double diagonal = 5.0) 
   return A;
 }
 
-inline const int* ints(const void* p) { return static_cast<const int*>(p); }
-
 }  // namespace sutura::engine::testing

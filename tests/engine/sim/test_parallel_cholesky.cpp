@@ -16,16 +16,28 @@ std::vector<double> values(const cholmod_factor& L) {
   return {x, x + L.xsize};
 }
 
+// CHOLMOD's analysis and factorisation of a matrix, its tree's split, and the two-thread
+// factorisation prepared for them.
+class ParallelCholesky : public ::testing::Test {
+ protected:
+  void prepare(const Eigen::SparseMatrix<double>& A) {
+    llt.compute(A);
+    ASSERT_EQ(llt.info(), Eigen::Success);
+    split = detail::split_supernode_tree(llt.factor());
+    parallel.prepare(A, llt.factor(), split);
+    ASSERT_TRUE(parallel.prepared());
+  }
+
+  testing::SupernodalLlt llt;
+  detail::SupernodeSplit split;
+  detail::ParallelCholesky parallel;
+};
+
 // The factor agrees with CHOLMOD's own to rounding (another summation order), solves to
 // double accuracy through CHOLMOD, and has the same bits on one and two threads.
-TEST(ParallelCholesky, FactorsLikeCholmodAndGivesTheSameBitsOnOneAndTwoThreads) {
+TEST_F(ParallelCholesky, FactorsLikeCholmodAndGivesTheSameBitsOnOneAndTwoThreads) {
   Eigen::SparseMatrix<double> A = testing::grid_laplacian(100);
-  testing::SupernodalLlt llt;
-  llt.compute(A);
-  ASSERT_EQ(llt.info(), Eigen::Success);
-  detail::ParallelCholesky parallel;
-  parallel.prepare(A, llt.factor());
-  ASSERT_TRUE(parallel.prepared());
+  ASSERT_NO_FATAL_FAILURE(prepare(A));
   // New values on the same pattern, as in a Newton loop.
   A = A * 2.0;
   for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 0.01 * (i % 7);
@@ -44,14 +56,12 @@ TEST(ParallelCholesky, FactorsLikeCholmodAndGivesTheSameBitsOnOneAndTwoThreads) 
   // Only the lower triangles of the diagonal blocks and the rows below them are the factor;
   // compare those through a solve and entrywise where CHOLMOD wrote.
   double largest = 0.0, difference = 0.0;
-  const int* super = testing::ints(llt.factor().super);
-  const int* row_start = testing::ints(llt.factor().pi);
-  const int* value_start = testing::ints(llt.factor().px);
-  for (std::size_t s = 0; s < llt.factor().nsuper; ++s) {
-    const int ncol = super[s + 1] - super[s], nrow = row_start[s + 1] - row_start[s];
+  const detail::SupernodalArrays a(llt.factor());
+  for (int s = 0; s < static_cast<int>(llt.factor().nsuper); ++s) {
+    const int ncol = a.ncol(s), nrow = a.nrow(s);
     for (int c = 0; c < ncol; ++c)
       for (int r = c; r < nrow; ++r) {
-        const std::size_t k = static_cast<std::size_t>(value_start[s]) + c * nrow + r;
+        const std::size_t k = static_cast<std::size_t>(a.value_start[s]) + c * nrow + r;
         largest = std::max(largest, std::abs(cholmod[k]));
         difference = std::max(difference, std::abs(cholmod[k] - two[k]));
       }
@@ -64,14 +74,9 @@ TEST(ParallelCholesky, FactorsLikeCholmodAndGivesTheSameBitsOnOneAndTwoThreads) 
 }
 
 // A matrix that is not positive definite is refused, wherever its bad pivot lies.
-TEST(ParallelCholesky, RefusesAMatrixThatIsNotPositiveDefinite) {
+TEST_F(ParallelCholesky, RefusesAMatrixThatIsNotPositiveDefinite) {
   const Eigen::SparseMatrix<double> A = testing::grid_laplacian(60);
-  testing::SupernodalLlt llt;
-  llt.compute(A);
-  ASSERT_EQ(llt.info(), Eigen::Success);
-  detail::ParallelCholesky parallel;
-  parallel.prepare(A, llt.factor());
-  ASSERT_TRUE(parallel.prepared());
+  ASSERT_NO_FATAL_FAILURE(prepare(A));
   // The grid Laplacian's eigenvalues are diagonal - 4 cos(...) - 4 cos(...): a diagonal of 1
   // gives negative ones (indefinite), and so does one negative diagonal entry anywhere.
   EXPECT_FALSE(parallel.factorize(testing::grid_laplacian(60, 1.0), llt.factor()));

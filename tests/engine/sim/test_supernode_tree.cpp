@@ -11,8 +11,6 @@
 namespace sutura::engine {
 namespace {
 
-using testing::ints;
-
 // Every supernode is in exactly one list; the rows a half's supernode updates belong to that
 // half or to the top (so the halves can be worked on at the same time); the top's rows are all
 // top rows; the halves carry about equal weight and the top is small.
@@ -22,9 +20,10 @@ TEST(SupernodeTree, SplitsIntoTwoIndependentBalancedHalvesAndASmallTop) {
   ASSERT_EQ(llt.info(), Eigen::Success);
   const cholmod_factor& L = llt.factor();
   const detail::SupernodeSplit split = detail::split_supernode_tree(L);
-  const int* super = ints(L.super);
-  const int* row_start = ints(L.pi);
-  const int* rows = ints(L.s);
+  const detail::SupernodalArrays a(L);
+  const int* super = a.super;
+  const int* row_start = a.row_start;
+  const int* rows = a.rows;
   const auto nsuper = static_cast<int>(L.nsuper);
   std::vector<int> group(static_cast<std::size_t>(nsuper), -2), column_group(L.n, -2);
   const auto put = [&](int s, int g) {
