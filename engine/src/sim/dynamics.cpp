@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sutura/engine/errors.hpp"
+#include "transpose_product.hpp"
 
 namespace sutura::engine {
 
@@ -74,9 +75,13 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     Eigen::VectorXd du = h * v0;
     apply_increment(state.shell, map.expand(du), d);
     ev = evaluate(sys, map, state.shell, 1.0, false);
+    Eigen::VectorXd damping;  // K_d du
     const auto residual = [&]() -> Eigen::VectorXd {
       Eigen::VectorXd R = mass.cwiseProduct(du * damp_m - v0 / h) + ev.residual;
-      if (damp_k != 0.0 && K_damp.rows() == R.size()) R += damp_k * (K_damp * du);
+      if (damp_k != 0.0 && K_damp.rows() == R.size()) {
+        detail::transpose_product(K_damp, du, damping);  // = K_d du: K_d is symmetric
+        R += damp_k * damping;
+      }
       return R;
     };
     double ref = -1.0, previous = -1.0;
@@ -84,7 +89,10 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     // R while Newton chases it.
     const auto rebuild = [&](bool new_damping) {
       const Evaluation full = evaluate(sys, map, state.shell, 1.0, true, true, &assembler);
-      if (new_damping || K_damp.rows() != full.tangent.rows()) K_damp = full.tangent;
+      if (new_damping || K_damp.rows() != full.tangent.rows()) {
+        K_damp = full.tangent;
+        K_damp.makeCompressed();
+      }
       Eigen::SparseMatrix<double> A = full.tangent + damp_k * K_damp;
       A.diagonal() += mass * damp_m;
       have_factor = solver->factorize(A);
