@@ -48,7 +48,7 @@ CorotatedElement corotate(const LocalRest& rest, const std::array<Eigen::Vector3
     dot_sum += rest.X[k].dot(p[k]);
     cross_sum += cross2(rest.X[k], p[k]);
   }
-  const double len = std::hypot(dot_sum, cross_sum);
+  const double len = std::sqrt(dot_sum * dot_sum + cross_sum * cross_sum);  // mm^2: no overflow
   const double cs = dot_sum / len, sn = cross_sum / len;
   e.T.col(0) = cs * e1a + sn * e2a;
   e.T.col(1) = -sn * e1a + cs * e2a;
