@@ -75,38 +75,43 @@ void corotational_gradient(const LocalRest& rest, const CorotatedElement& e,
   const double two_a = cross2(x[1] - x[0], x[2] - x[0]);
   const double s = X[0].dot(x[0]) + X[1].dot(x[1]) + X[2].dot(x[2]);
   std::array<Eigen::Vector2d, 3> grad_n;  // gradients of the linear shape functions
-  std::array<Mat3, 3> G;
   for (int a = 0; a < 3; ++a) {
     const Eigen::Vector2d& pb = x[(a + 1) % 3];
     const Eigen::Vector2d& pc = x[(a + 2) % 3];
     grad_n[a] = Eigen::Vector2d(pb.y() - pc.y(), pc.x() - pb.x()) / two_a;
-    G[a] << 0.0, 0.0, grad_n[a].y(),  //
-        0.0, 0.0, -grad_n[a].x(),     //
-        -X[a].y() / s, X[a].x() / s, 0.0;
   }
 
   // Corner forces n_a (in-plane; the normal shear forces drop out, see header) and moments m_a.
   std::array<Eigen::Vector3d, 3> n, m, mt, theta;
-  std::array<Mat3, 3> H;
   Eigen::Vector3d nbar = Eigen::Vector3d::Zero();
   Eigen::Vector3d M = Eigen::Vector3d::Zero();  // moment conjugate to the frame spin
   for (int a = 0; a < 3; ++a) {
     n[a] = {f.fm(3 * a), f.fm(3 * a + 1), 0.0};
     m[a] = {f.fb(2 * a), f.fb(2 * a + 1), f.fm(3 * a + 2)};
     theta[a] = {e.db(2 * a), e.db(2 * a + 1), e.dm(3 * a + 2)};
-    H[a] = so3::left_jacobian_inverse(theta[a]);
-    mt[a] = H[a].transpose() * m[a];
+    mt[a] = so3::left_jacobian_inverse_transpose_times(theta[a], m[a]);  // H_a^T m_a
     nbar += n[a] / 3.0;
     M.z() -= cross2(x[a], n[a].head<2>());
     M -= mt[a];
   }
   Vec18 gl;  // gradient in local components: P^T H^T f
   for (int a = 0; a < 3; ++a) {
-    gl.segment<3>(6 * a) = n[a] - nbar + G[a].transpose() * M;
+    // G_a^T M with the structure of G_a spelled out.
+    const Eigen::Vector3d GtM(-X[a].y() * M.z() / s, X[a].x() * M.z() / s,
+                              grad_n[a].y() * M.x() - grad_n[a].x() * M.y());
+    gl.segment<3>(6 * a) = n[a] - nbar + GtM;
     gl.segment<3>(6 * a + 3) = mt[a];
   }
   for (int b = 0; b < 6; ++b) g.segment<3>(3 * b) = e.T * gl.segment<3>(3 * b);
   if (tangent == nullptr) return;
+
+  std::array<Mat3, 3> G, H;
+  for (int a = 0; a < 3; ++a) {
+    G[a] << 0.0, 0.0, grad_n[a].y(),  //
+        0.0, 0.0, -grad_n[a].x(),     //
+        -X[a].y() / s, X[a].x() / s, 0.0;
+    H[a] = so3::left_jacobian_inverse(theta[a]);
+  }
 
   // The tangent is built transposed, Kt^T, column by column (column-major storage: every
   // update below is a contiguous, vectorised column operation). B = d(d)/d(xi, eta) is held

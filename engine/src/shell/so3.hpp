@@ -109,6 +109,14 @@ inline Mat3 left_jacobian_inverse(const Vec3& theta) {
   return H;
 }
 
+/// J_l^{-T}(theta) m = m + 1/2 theta x m + eta (theta (theta.m) - t^2 m), without forming the
+/// matrix (the gradient needs only this product).
+inline Vec3 left_jacobian_inverse_transpose_times(const Vec3& theta, const Vec3& m) {
+  const double t2 = theta.squaredNorm();
+  const double eta = inverse_jacobian_eta(std::sqrt(t2));
+  return m + 0.5 * theta.cross(m) + eta * (theta.dot(m) * theta - t2 * m);
+}
+
 /// d/dtheta [J_l^{-T}(theta) m] for fixed m, with J_l^{-T} m = m + 1/2 theta x m
 /// + eta (theta (theta.m) - t^2 m). The derivative gives the moment-correction stiffness
 /// K_M of Felippa & Haugen (2005), Sec. 7.
