@@ -7,8 +7,9 @@
 // rotation vector changes by dtheta = J_l^{-1}(theta) phi. J_l^{-1} is the matrix called H
 // in Felippa & Haugen (2005), "A unified formulation of small-strain corotational finite
 // elements: I. Theory", CMAME 194 (rotation-vector Jacobian). Everything here is exact
-// (no small-rotation approximation); series expansions replace the closed forms only where
-// those lose precision (|theta| < 0.25).
+// (no small-rotation approximation); series expansions, accurate to round-off, replace the
+// closed forms where those lose precision (|theta| < 0.25) and, in log_quat, where they cost
+// more (angles below 11.4 deg).
 // Cost: a few tens of flops each.
 #include <cmath>
 

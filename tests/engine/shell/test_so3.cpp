@@ -70,6 +70,11 @@ TEST(So3, LeftJacobianInverseMapsSpinsToRotationVectorRates) {
       const Vec3 rate = (plus - minus) / (2.0 * eps);
       EXPECT_LE((rate - H.col(k)).norm(), 1e-8) << "angle " << angle << ", spin axis " << k;
     }
+    // The gradient's matrix-free product H^T m agrees with the matrix to round-off.
+    const Vec3 m(u(rng), u(rng), u(rng));
+    const Vec3 product = so3::left_jacobian_inverse_transpose_times(theta, m);
+    EXPECT_LE((product - H.transpose() * m).norm(), 1e-15 * (1.0 + angle) * m.norm())
+        << "angle " << angle;
   }
 }
 
