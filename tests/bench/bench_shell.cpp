@@ -105,15 +105,19 @@ void BM_FirstAssembly(benchmark::State& st) {
 }
 
 // The two parts of a modified-Newton iteration with a factorisation already in hand: energy and
-// gradient (no tangent), and one back-substitution.
+// gradient (no tangent), and one back-substitution. Gradient arguments: elements; 0 = model 1
+// (corotational shell), 1 = model 2 (discrete shell).
 void BM_Gradient(benchmark::State& st) {
-  TubeCase c(static_cast<int>(st.range(0)), make_corotational_shell());
+  const bool discrete = st.range(1) == 1;
+  TubeCase c(static_cast<int>(st.range(0)),
+             discrete ? make_discrete_shell() : make_corotational_shell());
   const DofMap map(c.sys);
   for (auto _ : st) {
     Evaluation ev = evaluate(c.sys, map, c.state, 1.0, false);
     benchmark::DoNotOptimize(ev.residual.data());
   }
   st.counters["elements"] = static_cast<double>(c.faces.size());
+  st.SetLabel(discrete ? "discrete shell" : "corotational shell");
 }
 
 // Argument 2: 0 = the exact solve, 1 = solve_approximately (the factor in single precision);
@@ -141,9 +145,11 @@ void BM_BackSubstitution(benchmark::State& st) {
 // counters give the time per step including the first factorisation and the tip's displacement
 // (to compare the accuracy of the tolerances). Arguments: Newton tolerance per step as -log10
 // (6 = the default 1e-6); 1 = single-precision solves on reused matrices (the default), 0 =
-// every solve exact.
+// every solve exact; third: 0 = model 1 (corotational shell), 1 = model 2 (discrete shell,
+// 3 DOF per node).
 void BM_DynamicsStep(benchmark::State& st) {
-  TubeCase c(5000, make_corotational_shell());
+  const bool discrete = st.range(2) == 1;
+  TubeCase c(5000, discrete ? make_discrete_shell() : make_corotational_shell());
   DynamicsParams p;
   p.dt = 1e-3;
   p.steps = 50;
@@ -165,6 +171,7 @@ void BM_DynamicsStep(benchmark::State& st) {
   st.counters["factorizations_per_run"] =
       static_cast<double>(factorizations) / std::max<double>(st.iterations(), 1);
   st.counters["tip_ux_um"] = 1e3 * tip_ux;
+  st.SetLabel(discrete ? "discrete shell" : "corotational shell");
 }
 
 // Sze, Liu & Lo 2004 case 3.1 from the unloaded strip to equilibrium at P = 4.
@@ -222,7 +229,12 @@ BENCHMARK(BM_NewtonIteration)
     ->Args({1000, 0})->Args({5000, 0})->Args({20000, 0})->Args({80000, 0})
     ->Args({20000, 1})->Args({20000, 2})
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Gradient)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Gradient)
+    ->Args({5000, 0})
+    ->Args({20000, 0})
+    ->Args({5000, 1})
+    ->Args({20000, 1})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BackSubstitution)
     ->Args({5000, 0})
     ->Args({5000, 1})
@@ -230,10 +242,11 @@ BENCHMARK(BM_BackSubstitution)
     ->Args({20000, 1})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DynamicsStep)
-    ->Args({6, 1})
-    ->Args({6, 0})
-    ->Args({4, 1})
-    ->Args({3, 1})
+    ->Args({6, 1, 0})
+    ->Args({6, 0, 0})
+    ->Args({4, 1, 0})
+    ->Args({3, 1, 0})
+    ->Args({6, 1, 1})
     ->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   // The same OpenBLAS kernels as the sutura program uses (why: blas_kernels.hpp).

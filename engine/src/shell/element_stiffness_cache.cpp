@@ -4,26 +4,9 @@
 
 #include "andes_membrane.hpp"
 #include "dkt_bending.hpp"
+#include "rest_key.hpp"
 
 namespace sutura::engine {
-namespace {
-
-/// Bitwise equality (a NaN input never matches, so it is rebuilt and reported every call).
-bool same(const ElementRest& a, const ElementRest& b) {
-  for (int k = 0; k < 3; ++k)
-    if (a.X[k] != b.X[k] || a.Q[k].coeffs() != b.Q[k].coeffs()) return false;
-  return true;
-}
-
-// A new material field must be compared here too.
-static_assert(sizeof(ShellMaterial) == 5 * sizeof(double), "compare every ShellMaterial field");
-bool same(const ShellMaterial& a, const ShellMaterial& b) {
-  return a.youngs_modulus == b.youngs_modulus && a.poisson_ratio == b.poisson_ratio &&
-         a.thickness == b.thickness && a.density == b.density &&
-         a.drilling_factor == b.drilling_factor;
-}
-
-}  // namespace
 
 bool build_element_rest_data(const ElementRest& rest, const ShellMaterial& m,
                              ElementRestData& out) {
@@ -47,7 +30,7 @@ void ElementStiffnessCache::resize(std::size_t F) { entries_.resize(F); }
 const ElementRestData* ElementStiffnessCache::get(std::size_t f, const ElementRest& rest,
                                                   const ShellMaterial& material) {
   Entry& e = entries_[f];
-  if (!e.built || !same(e.key_rest, rest) || !same(e.key_material, material)) {
+  if (!e.built || !same_bits(e.key_rest, rest) || !same_bits(e.key_material, material)) {
     e.key_rest = rest;
     e.key_material = material;
     e.degenerate = !build_element_rest_data(rest, material, e.data);

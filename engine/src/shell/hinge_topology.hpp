@@ -1,7 +1,7 @@
 #pragma once
 // Hinges (interior edges with their two faces) of a face array, for Model 2's bending.
-// Built from the faces alone on every model call (models keep no hidden state). Cost:
-// O(F log F) (one sort of the 3F half-edges).
+// Built from the faces alone; the model keeps it while the face array is unchanged
+// (discrete_rest_cache.hpp). Cost: O(F log F) (one sort of the 3F half-edges).
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -4,14 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
+#include <omp.h>
 
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
@@ -548,6 +551,101 @@ TEST(DiscreteShell, EnergyIndependentOfEachElementsRestPlacement) {
   EXPECT_NEAR(e1, e0, 1e-10 * e0);
   EXPECT_LE((g1 - g0).lpNorm<Eigen::Infinity>(), 1e-10 * g0.lpNorm<Eigen::Infinity>());
   EXPECT_LE((H1 - H0).lpNorm<Eigen::Infinity>(), 1e-10 * H0.lpNorm<Eigen::Infinity>());
+}
+
+bool same_triplets(const Triplets& a, const Triplets& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].row() != b[i].row() || a[i].col() != b[i].col() || a[i].value() != b[i].value())
+      return false;
+  return true;
+}
+
+// 32 x 24 cells of a closed tube: 1536 faces and about 2300 hinges, above the threshold from
+// which the per-face and per-hinge loops run in parallel.
+TEST(DiscreteShell, ParallelEvaluationIsBitwiseIndependentOfThreadCount) {
+  const Grid g = make_grid(32, 24, true, [](double u, double v) {
+    return Vec3(3.0 * std::cos(2.0 * kPi * u), 3.0 * std::sin(2.0 * kPi * u), 12.0 * v);
+  });
+  ASSERT_GT(g.faces.size(), 1500U);
+  const Fixture fx = fixture_at_rest(g, material(1.0, 0.45, 0.4));
+  const ShellState s = perturbed(g.x, 0.1, 11);
+  const int threads = omp_get_max_threads();
+  std::array<double, 2> e{};
+  std::array<Eigen::VectorXd, 2> grad;
+  std::array<Triplets, 2> K;
+  std::array<ElementMeasures, 2> m;
+  for (int run = 0; run < 2; ++run) {
+    omp_set_num_threads(run + 1);
+    const auto model = make_discrete_shell();  // fresh: builds its rest data with run + 1 threads
+    e[run] = model->energy_gradient_hessian(fx.problem(), s, grad[run], K[run]);
+    m[run] = model->measures(fx.problem(), s);
+  }
+  omp_set_num_threads(threads);
+  EXPECT_EQ(e[0], e[1]);
+  EXPECT_TRUE((grad[0].array() == grad[1].array()).all());
+  EXPECT_TRUE(same_triplets(K[0], K[1]));
+  EXPECT_EQ(m[0].membrane_strain, m[1].membrane_strain);
+  EXPECT_EQ(m[0].bending_curvature, m[1].bending_curvature);
+  EXPECT_EQ(m[0].energy_density, m[1].energy_density);
+}
+
+// The model keeps the hinge topology and the rest-dependent face and hinge data between calls
+// (a memo keyed by the faces, each face's rest data and material): a model reused across
+// changing rest states, materials and meshes must give bitwise the results of a fresh model,
+// also after a call that failed on a bad mesh.
+TEST(DiscreteShell, ReusedModelFollowsRestMaterialAndMeshChangesBitwise) {
+  const auto reused = make_discrete_shell();
+  const auto check = [&](const Fixture& fx, const ShellState& s, const std::string& what) {
+    const auto fresh = make_discrete_shell();
+    Eigen::VectorXd g1, g2;
+    Triplets t1, t2;
+    const double e1 = reused->energy_gradient_hessian(fx.problem(), s, g1, t1);
+    const double e2 = fresh->energy_gradient_hessian(fx.problem(), s, g2, t2);
+    EXPECT_EQ(e1, e2) << what;
+    ASSERT_EQ(g1.size(), g2.size()) << what;
+    EXPECT_TRUE((g1.array() == g2.array()).all()) << what;
+    EXPECT_TRUE(same_triplets(t1, t2)) << what;
+    Eigen::VectorXd g3, g4;
+    EXPECT_EQ(reused->energy_gradient(fx.problem(), s, g3),
+              fresh->energy_gradient(fx.problem(), s, g4))
+        << what;
+    EXPECT_TRUE((g3.array() == g4.array()).all()) << what;
+    EXPECT_EQ(reused->measures(fx.problem(), s).bending_curvature,
+              fresh->measures(fx.problem(), s).bending_curvature)
+        << what;
+  };
+  const Grid g = tube_panel();
+  Fixture fx = fixture_at_rest(g, material(1.2, 0.4, 0.5));
+  const ShellState s = perturbed(g.x, 0.2, 3);
+  check(fx, s, "first call");
+  check(fx, s, "second call");
+  // Relaxation-like change of one face's rest corners and of another's rest triads (the rest
+  // dihedral angles of its hinges depend on them).
+  fx.rest.elements[3].X[1] += Vec3(0.05, -0.02, 0.01);
+  check(fx, s, "rest corners changed");
+  fx.rest.elements[8].Q[2] = Quat(Eigen::AngleAxisd(0.3, Vec3::UnitY())) * fx.rest.elements[8].Q[2];
+  check(fx, s, "rest triads changed");
+  fx.materials[0].thickness = 0.8;
+  check(fx, s, "thickness changed");
+  fx.materials.push_back(material(0.6, 0.3, 0.3));
+  fx.face_material[5] = 1;
+  check(fx, s, "face material changed");
+  // Another mesh through the same model, a face array the model rejects, then the panel again.
+  const Grid other = make_grid(6, 3, true, [](double u, double v) {
+    return Vec3(2.0 * std::cos(2.0 * kPi * u), 2.0 * std::sin(2.0 * kPi * u), 4.0 * v);
+  });
+  check(fixture_at_rest(other, material(1.0, 0.45, 0.5)), perturbed(other.x, 0.1, 4), "other mesh");
+  Fixture fan;
+  fan.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  fan.materials = {material(1.0, 0.3, 1.0)};
+  fan.face_material = {0, 0, 0};
+  fan.num_nodes = 5;
+  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
+                               Vec3(0, 0, 1)};
+  fan.rest = rest_from_state(fan.faces, state_of(x));
+  EXPECT_THROW((void)reused->energy(fan.problem(), state_of(x)), TopologyError);
+  check(fx, s, "panel again");
 }
 
 TEST(DiscreteShell, RejectsInconsistentProblems) {
