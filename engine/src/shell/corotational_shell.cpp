@@ -27,6 +27,7 @@
 #include "corotation.hpp"
 #include "dkt_bending.hpp"
 #include "element_stiffness_cache.hpp"
+#include "parallel_loop.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
 
@@ -35,8 +36,6 @@ namespace {
 
 constexpr int kDofs = 6;
 constexpr int kElementDofs = 18;
-// Below this many elements the OpenMP fork/join costs more than it saves.
-constexpr std::size_t kParallelThreshold = 512;
 
 /// Checks the problem and the state once per call; throws InvalidArgument naming the problem.
 void check_problem(const ShellProblem& p, const ShellState& s) {
@@ -122,9 +121,7 @@ bool evaluate_element(const ShellProblem& p, const ShellState& s, std::size_t f,
 template <class Body>
 void for_each_element(std::size_t F, Body&& body) {
   std::vector<unsigned char> bad(F, 0);
-  const auto n = static_cast<std::ptrdiff_t>(F);
-#pragma omp parallel for schedule(static) if (F >= kParallelThreshold)
-  for (std::ptrdiff_t f = 0; f < n; ++f) bad[f] = body(static_cast<std::size_t>(f)) ? 0 : 1;
+  for_each_index(F, [&](std::size_t f) { bad[f] = body(f) ? 0 : 1; });
   for (std::size_t f = 0; f < F; ++f)
     if (bad[f]) throw_degenerate(f);
 }

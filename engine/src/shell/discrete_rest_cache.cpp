@@ -1,14 +1,11 @@
 #include "discrete_rest_cache.hpp"
 
 #include "dihedral_angle.hpp"
+#include "parallel_loop.hpp"
 #include "rest_key.hpp"
 
 namespace sutura::engine::dshell {
 namespace {
-
-// Below this many faces (hinges) the loops run serially: OpenMP's start-up costs more than the
-// work (the same threshold as model 1's element loop).
-constexpr std::size_t kParallelThreshold = 512;
 
 FaceStencil make_stencil(const HingeTopology& topo, const FaceIndices& face, std::size_t f) {
   FaceStencil st;
@@ -48,39 +45,28 @@ double hinge_rest_angle(const ShellProblem& p, const Hinge& hg) {
                              kg);
 }
 
-/// Topology, stencils and room for the per-face and per-hinge data.
-void build_topology(const std::vector<FaceIndices>& faces, DiscreteRestData& d) {
-  d.topo = build_hinge_topology(faces);
-  const std::size_t F = faces.size();
-  d.stencil.resize(F);
-  const auto n = static_cast<std::ptrdiff_t>(F);
-#pragma omp parallel for schedule(static) if (F >= kParallelThreshold)
-  for (std::ptrdiff_t f = 0; f < n; ++f)
-    d.stencil[f] = make_stencil(d.topo, faces[f], static_cast<std::size_t>(f));
-  d.cst.resize(F);
-  d.bending.resize(F);
-  d.theta_rest.resize(d.topo.hinges.size());
-}
-
 /// Rest angles of the hinges for which keep(h) is false.
 template <class Keep>
 void update_hinges(const ShellProblem& p, DiscreteRestData& d, Keep&& keep) {
-  const std::size_t H = d.topo.hinges.size();
-  const auto n = static_cast<std::ptrdiff_t>(H);
-#pragma omp parallel for schedule(static) if (H >= kParallelThreshold)
-  for (std::ptrdiff_t h = 0; h < n; ++h)
-    if (!keep(static_cast<std::size_t>(h))) d.theta_rest[h] = hinge_rest_angle(p, d.topo.hinges[h]);
+  for_each_index(d.topo.hinges.size(), [&](std::size_t h) {
+    if (!keep(h)) d.theta_rest[h] = hinge_rest_angle(p, d.topo.hinges[h]);
+  });
 }
 
 }  // namespace
 
 void build_discrete_rest_data(const ShellProblem& p, DiscreteRestData& out) {
-  build_topology(*p.faces, out);
-  const std::size_t F = p.faces->size();
-  const auto n = static_cast<std::ptrdiff_t>(F);
-#pragma omp parallel for schedule(static) if (F >= kParallelThreshold)
-  for (std::ptrdiff_t f = 0; f < n; ++f)
-    build_face(p, out.topo, static_cast<std::size_t>(f), out.cst[f], out.bending[f]);
+  const std::vector<FaceIndices>& faces = *p.faces;
+  out.topo = build_hinge_topology(faces);
+  const std::size_t F = faces.size();
+  out.stencil.resize(F);
+  out.cst.resize(F);
+  out.bending.resize(F);
+  for_each_index(F, [&](std::size_t f) {
+    out.stencil[f] = make_stencil(out.topo, faces[f], f);
+    build_face(p, out.topo, f, out.cst[f], out.bending[f]);
+  });
+  out.theta_rest.resize(out.topo.hinges.size());
   update_hinges(p, out, [](std::size_t) { return false; });
 }
 
@@ -102,17 +88,15 @@ const DiscreteRestData& DiscreteRestCache::update(const ShellProblem& p) {
     return data_;
   }
   std::vector<unsigned char> rebuilt(F, 0);
-  const auto n = static_cast<std::ptrdiff_t>(F);
-#pragma omp parallel for schedule(static) if (F >= kParallelThreshold)
-  for (std::ptrdiff_t f = 0; f < n; ++f) {
+  for_each_index(F, [&](std::size_t f) {
     const ElementRest& rest = p.rest->elements[f];
-    const ShellMaterial& mat = material_of(static_cast<std::size_t>(f));
-    if (same_bits(key_rest_[f], rest) && same_bits(key_material_[f], mat)) continue;
+    const ShellMaterial& mat = material_of(f);
+    if (same_bits(key_rest_[f], rest) && same_bits(key_material_[f], mat)) return;
     key_rest_[f] = rest;
     key_material_[f] = mat;
-    build_face(p, data_.topo, static_cast<std::size_t>(f), data_.cst[f], data_.bending[f]);
+    build_face(p, data_.topo, f, data_.cst[f], data_.bending[f]);
     rebuilt[f] = 1;
-  }
+  });
   update_hinges(p, data_, [&](std::size_t h) {
     const Hinge& hg = data_.topo.hinges[h];
     return rebuilt[hg.face[0]] == 0 && rebuilt[hg.face[1]] == 0;

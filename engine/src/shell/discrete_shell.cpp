@@ -31,6 +31,7 @@
 #include "discrete_rest_cache.hpp"
 #include "hinge_bending.hpp"
 #include "hinge_topology.hpp"
+#include "parallel_loop.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
 
@@ -93,19 +94,6 @@ void check_problem(const ShellProblem& p, const ShellState& s) {
     const double twice_area = (X[1] - X[0]).cross(X[2] - X[0]).norm();
     if (!(twice_area > 1e-12 * scale)) fail("rest element " + std::to_string(f) + " is degenerate");
   }
-}
-
-// Below this many faces (hinges) the loops run serially: OpenMP's start-up costs more than the
-// work (the same threshold as model 1's element loop).
-constexpr std::size_t kParallelThreshold = 512;
-
-/// Runs body(i) for i in [0, n), in parallel for large n. Every i writes only its own slots,
-/// so the results do not depend on the number of threads.
-template <class Body>
-void for_each_index(std::size_t n, Body&& body) {
-  const auto count = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelThreshold)
-  for (std::ptrdiff_t i = 0; i < count; ++i) body(static_cast<std::size_t>(i));
 }
 
 class Evaluation {

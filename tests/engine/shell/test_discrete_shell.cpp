@@ -553,6 +553,21 @@ TEST(DiscreteShell, EnergyIndependentOfEachElementsRestPlacement) {
   EXPECT_LE((H1 - H0).lpNorm<Eigen::Infinity>(), 1e-10 * H0.lpNorm<Eigen::Infinity>());
 }
 
+// Three faces on the edge (0, 1): not a manifold, rejected with TopologyError.
+std::vector<Vec3> fan_positions() {
+  return {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
+}
+
+Fixture non_manifold_fan() {
+  Fixture fan;
+  fan.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  fan.materials = {material(1.0, 0.3, 1.0)};
+  fan.face_material = {0, 0, 0};
+  fan.num_nodes = 5;
+  fan.rest = rest_from_state(fan.faces, state_of(fan_positions()));
+  return fan;
+}
+
 bool same_triplets(const Triplets& a, const Triplets& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)
@@ -636,15 +651,8 @@ TEST(DiscreteShell, ReusedModelFollowsRestMaterialAndMeshChangesBitwise) {
     return Vec3(2.0 * std::cos(2.0 * kPi * u), 2.0 * std::sin(2.0 * kPi * u), 4.0 * v);
   });
   check(fixture_at_rest(other, material(1.0, 0.45, 0.5)), perturbed(other.x, 0.1, 4), "other mesh");
-  Fixture fan;
-  fan.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
-  fan.materials = {material(1.0, 0.3, 1.0)};
-  fan.face_material = {0, 0, 0};
-  fan.num_nodes = 5;
-  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
-                               Vec3(0, 0, 1)};
-  fan.rest = rest_from_state(fan.faces, state_of(x));
-  EXPECT_THROW((void)reused->energy(fan.problem(), state_of(x)), TopologyError);
+  const Fixture fan = non_manifold_fan();
+  EXPECT_THROW((void)reused->energy(fan.problem(), state_of(fan_positions())), TopologyError);
   check(fx, s, "panel again");
 }
 
@@ -659,15 +667,8 @@ TEST(DiscreteShell, RejectsInconsistentProblems) {
   fx.rest.elements.pop_back();
   EXPECT_THROW((void)model->energy(fx.problem(), s), InvalidArgument);
   // An edge shared by three faces.
-  Fixture fan;
-  fan.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
-  fan.materials = {material(1.0, 0.3, 1.0)};
-  fan.face_material = {0, 0, 0};
-  fan.num_nodes = 5;
-  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
-                               Vec3(0, 0, 1)};
-  fan.rest = rest_from_state(fan.faces, state_of(x));
-  EXPECT_THROW((void)model->energy(fan.problem(), state_of(x)), TopologyError);
+  const Fixture fan = non_manifold_fan();
+  EXPECT_THROW((void)model->energy(fan.problem(), state_of(fan_positions())), TopologyError);
 }
 
 }  // namespace
