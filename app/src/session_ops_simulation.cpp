@@ -178,6 +178,7 @@ SimulateOp parse_simulate(Fields& f) {
   if (p.tolerance >= 1.0) f.fail("tolerance", "must be below 1");
   p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 1000);
   p.max_step_cuts = f.optional_int("max_step_cuts", p.max_step_cuts, 0, 10);
+  p.corotated_damping = f.optional_bool("corotated_damping", p.corotated_damping);
   p.linear_solver = linear_solver(f, p.linear_solver);
   if (auto r = f.optional_object("relax")) {
     engine::RelaxationParams rp;

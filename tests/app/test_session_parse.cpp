@@ -161,6 +161,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"simulate\", \"dt\": 0}\n", 2, "dt", "greater than 0"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"max_step_cuts\": 11}\n", 2, "max_step_cuts",
                 "between"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"corotated_damping\": 1}\n", 2,
+                "corotated_damping", "true or false"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
                           "\"settle_steps\": 30}}\n",
                 2, "relax.settle_steps", "no effect"},

@@ -1,5 +1,6 @@
 #pragma once
-// The shell models' per-element loops (private to engine/src/shell).
+// Parallel per-element and per-node loops of the shell models and the solvers (private to
+// engine/src).
 #include <cstddef>
 
 namespace sutura::engine {

@@ -4,8 +4,8 @@
 #include <functional>
 #include <sstream>
 
+#include "corotated_damping.hpp"
 #include "sutura/engine/errors.hpp"
-#include "transpose_product.hpp"
 
 namespace sutura::engine {
 
@@ -41,11 +41,13 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   // Modified Newton: the step matrix A = M (1/h^2 + alpha/h) + (beta/h) K_d + K is factorised
   // once and reused across iterations and steps while it still contracts the residual by at
   // least half per iteration; otherwise it is rebuilt from the current tangent. K_d, the
-  // stiffness in the damping term, is the tangent of the last rebuild, so the damping force
-  // stays linear in the velocity. Reuse is what makes a step cost about one gradient
-  // evaluation and one back-substitution instead of a full assembly and factorisation.
+  // stiffness in the damping term, is the tangent of the last rebuild at the start of a step,
+  // turned with the nodes' rotations since (corotated_damping.hpp; the turn is held for the
+  // step, so the damping force stays linear in the step's increment). Reuse is what makes a
+  // step cost about one gradient evaluation and one back-substitution instead of a full
+  // assembly and factorisation.
   TangentAssembler assembler;
-  Eigen::SparseMatrix<double> K_damp;
+  detail::CorotatedDamping damping(sys, map);
   bool have_factor = false;
   // Iterations on a reused matrix solve in single precision (DynamicsParams::
   // single_precision_solves; Cholmod only, the others solve exactly anyway) when the current
@@ -69,31 +71,33 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
             ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state.shell))
             : 0.0;
     const Eigen::VectorXd v0 = map.restrict(state.velocity);
+    // Bent past kRetakeBend since K_d was taken: the step matrix and K_d are taken anew at
+    // this step's start. Without corotated_damping nothing turns (Q = I throughout).
+    if (params.corotated_damping &&
+        damping.turn_to(state.shell.x) > detail::CorotatedDamping::kRetakeBend)
+      have_factor = false;
     // Backward Euler for the increment du = h v1:
     //   R(du) = M (du/h - v0)/h + C du/h + g(x0 + du) - f_ext = 0,  C = alpha M + beta K_d.
     // Predictor: constant velocity, du = h v0.
     Eigen::VectorXd du = h * v0;
     apply_increment(state.shell, map.expand(du), d);
     ev = evaluate(sys, map, state.shell, 1.0, false);
-    Eigen::VectorXd damping;  // K_d du
+    Eigen::VectorXd damping_force;  // Q K_d Q^T du
     const auto residual = [&]() -> Eigen::VectorXd {
       Eigen::VectorXd R = mass.cwiseProduct(du * damp_m - v0 / h) + ev.residual;
-      if (damp_k != 0.0 && K_damp.rows() == R.size()) {
-        detail::transpose_product(K_damp, du, damping);  // = K_d du: K_d is symmetric
-        R += damp_k * damping;
+      if (damp_k != 0.0 && !damping.empty()) {
+        damping.apply(du, damping_force);
+        R += damp_k * damping_force;
       }
       return R;
     };
     double ref = -1.0, previous = -1.0;
     // K_d may only change at the start of a step: changing it mid-step would move the root of
-    // R while Newton chases it.
+    // R while Newton chases it. Within a step the step matrix takes the step's turned K_d.
     const auto rebuild = [&](bool new_damping) {
       const Evaluation full = evaluate(sys, map, state.shell, 1.0, true, true, &assembler);
-      if (new_damping || K_damp.rows() != full.tangent.rows()) {
-        K_damp = full.tangent;
-        K_damp.makeCompressed();
-      }
-      Eigen::SparseMatrix<double> A = full.tangent + damp_k * K_damp;
+      if (new_damping || damping.empty()) damping.reset(full.tangent, state.shell.x);
+      Eigen::SparseMatrix<double> A = full.tangent + damp_k * damping.matrix();
       A.diagonal() += mass * damp_m;
       have_factor = solver->factorize(A);
       factor_h = h;
@@ -125,8 +129,14 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       previous = rnorm;
       Eigen::VectorXd delta;
       const bool exact = fresh || !approximate_ok;
-      if (!(exact ? solver->solve(-R, delta) : solver->solve_approximately(-R, delta)))
+      // The reused matrix, factorised at the damping's reference, turned with the nodes'
+      // rotations since (CorotatedDamping::turn).
+      const bool turn = damping.turned();
+      Eigen::VectorXd rhs = -R;
+      if (turn) damping.turn(true, rhs);
+      if (!(exact ? solver->solve(rhs, delta) : solver->solve_approximately(rhs, delta)))
         return "the linear solve failed: " + solver->last_note();
+      if (turn) damping.turn(false, delta);
       if (fresh) approximate_ok = single_precision && approximate_solve_agrees(*solver, -R, delta);
       du += delta;
       apply_increment(state.shell, map.expand(delta), d);

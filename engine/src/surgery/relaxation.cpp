@@ -334,6 +334,10 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
   // Steps taken at (or near) equilibrium have a round-off first residual; measure them
   // against the forces of the joining instead.
   dp.force_reference = std::max(dp.force_reference, 1e-3 * scales.force);
+  // The damping here only has to settle the shape; the unturned stiffness damping, which also
+  // damps rigid rotation, does that with a quarter of the factorisations of the corotated one
+  // (DynamicsParams::corotated_damping).
+  dp.corotated_damping = false;
   const int settle = p.s_end >= 1.0 && p.settle ? p.settle_steps : 0;
   dp.steps = p.steps + settle;
   DynamicsState ds{state, {}};

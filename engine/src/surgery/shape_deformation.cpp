@@ -1,11 +1,11 @@
 #include "shape_deformation.hpp"
 
-#include <Eigen/SVD>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <utility>
 
+#include "../geometry/best_rotation.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine::detail {
@@ -136,14 +136,7 @@ std::vector<Vec3> as_rigid_as_possible(const std::vector<Vec3>& positions,
         Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
         for (const auto& [w, weight] : L.adjacent[v])
           S += weight * (positions[v] - positions[w]) * (p[v] - p[w]).transpose();
-        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        Eigen::Matrix3d U = svd.matrixU();
-        Eigen::Matrix3d r = svd.matrixV() * U.transpose();
-        if (r.determinant() < 0) {  // a reflection: flip the axis of the smallest singular value
-          U.col(2) *= -1.0;
-          r = svd.matrixV() * U.transpose();
-        }
-        R[v] = r;
+        R[v] = best_rotation(S);
       }
       // Global step: positions that best match the rotated rest edges.
       Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(L.m, 3);
