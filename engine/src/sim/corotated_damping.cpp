@@ -28,10 +28,10 @@ void CorotatedDamping::reset(const Eigen::SparseMatrix<double>& tangent,
 
 double CorotatedDamping::turn_to(const std::vector<Vec3>& x) {
   if (empty()) return 0.0;
-  const double deformation = rings_.compute(reference_, x, Q_);
+  const double bend = rings_.compute(reference_, x, Q_);
   turned_ = true;
   turned_to_ = x;
-  return deformation;
+  return bend;
 }
 
 void CorotatedDamping::turn(bool transpose, Eigen::VectorXd& v) const {
