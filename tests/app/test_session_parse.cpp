@@ -163,6 +163,11 @@ INSTANTIATE_TEST_SUITE_P(
                 "between"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"corotated_damping\": 1}\n", 2,
                 "corotated_damping", "true or false"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"scheme\": \"explicit\"}\n", 2, "scheme",
+                "not one of"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"scheme\": \"linearized\", "
+                          "\"relax\": {}}\n",
+                2, "scheme", "uses newton"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
                           "\"settle_steps\": 30}}\n",
                 2, "relax.settle_steps", "no effect"},

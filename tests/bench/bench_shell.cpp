@@ -147,7 +147,8 @@ void BM_BackSubstitution(benchmark::State& st) {
 // steps 10 to 49 alone, and the tip's displacement (to compare the accuracy of the
 // tolerances). Arguments: Newton tolerance per step as -log10 (6 = the default 1e-6); 1 =
 // single-precision solves on reused matrices (the default), 0 = every solve exact; third:
-// 0 = model 1 (corotational shell), 1 = model 2 (discrete shell, 3 DOF per node).
+// 0 = model 1 (corotational shell), 1 = model 2 (discrete shell, 3 DOF per node); fourth:
+// 0 = DynamicsScheme::Newton (the default), 1 = DynamicsScheme::Linearized.
 void BM_DynamicsStep(benchmark::State& st) {
   const bool discrete = st.range(2) == 1;
   TubeCase c(5000, discrete ? make_discrete_shell() : make_corotational_shell());
@@ -156,6 +157,7 @@ void BM_DynamicsStep(benchmark::State& st) {
   p.steps = 50;
   p.tolerance = std::pow(10.0, -static_cast<double>(st.range(0)));
   p.single_precision_solves = st.range(1) == 1;
+  p.scheme = st.range(3) == 1 ? DynamicsScheme::Linearized : DynamicsScheme::Newton;
   const auto tip = select_vertices(c.mesh.positions(), SelectNearest{{Vec3(4, 0, 40)}})[0].index();
   int newton = 0, steps = 0, factorizations = 0;
   double tip_ux = 0.0, steady_seconds = 0.0;
@@ -183,7 +185,8 @@ void BM_DynamicsStep(benchmark::State& st) {
   st.counters["tip_ux_um"] = 1e3 * tip_ux;
   st.counters["ms_per_step_10_to_50"] =
       1e3 * steady_seconds / std::max<double>(st.iterations(), 1) / (p.steps - 10);
-  st.SetLabel(discrete ? "discrete shell" : "corotational shell");
+  st.SetLabel(std::string(discrete ? "discrete shell" : "corotational shell") +
+              (p.scheme == DynamicsScheme::Linearized ? ", linearized" : ""));
 }
 
 // Sze, Liu & Lo 2004 case 3.1 from the unloaded strip to equilibrium at P = 4.
@@ -254,11 +257,13 @@ BENCHMARK(BM_BackSubstitution)
     ->Args({20000, 1})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DynamicsStep)
-    ->Args({6, 1, 0})
-    ->Args({6, 0, 0})
-    ->Args({4, 1, 0})
-    ->Args({3, 1, 0})
-    ->Args({6, 1, 1})
+    ->Args({6, 1, 0, 0})
+    ->Args({6, 0, 0, 0})
+    ->Args({4, 1, 0, 0})
+    ->Args({3, 1, 0, 0})
+    ->Args({6, 1, 1, 0})
+    ->Args({6, 1, 0, 1})
+    ->Args({6, 1, 1, 1})
     ->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   // The same OpenBLAS kernels as the sutura program uses (why: blas_kernels.hpp).

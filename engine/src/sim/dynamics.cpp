@@ -45,7 +45,8 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   // turned with the nodes' rotations since (corotated_damping.hpp; the turn is held for the
   // step, so the damping force stays linear in the step's increment). Reuse is what makes a
   // step cost about one gradient evaluation and one back-substitution instead of a full
-  // assembly and factorisation.
+  // assembly and factorisation. DynamicsScheme::Linearized ends a step at its first iteration
+  // that halves the residual without raising the energy.
   TangentAssembler assembler;
   detail::CorotatedDamping damping(sys, map);
   bool have_factor = false;
@@ -56,6 +57,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   const bool single_precision =
       params.single_precision_solves && params.linear_solver == LinearSolverKind::Cholmod;
   bool approximate_ok = false;
+  const bool linearized = params.scheme == DynamicsScheme::Linearized;
   double factor_h = 0.0;  // the step size the factorised matrix was built for
   double energy_scale = 0.0;
   Evaluation ev;
@@ -71,6 +73,12 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
             ? std::min(params.min_area_ratio, min_area_ratio(sys.problem, state.shell))
             : 0.0;
     const Eigen::VectorXd v0 = map.restrict(state.velocity);
+    // The linearized scheme's energy guard: state, kinetic and internal energy at the start
+    // (the internal energy from the end of the last step; DynamicsScheme::Linearized).
+    if (linearized && ev.residual.size() == 0) ev = evaluate(sys, map, state.shell, 1.0, false);
+    const ShellState start_shell = linearized ? state.shell : ShellState{};
+    const double start_kinetic = 0.5 * v0.dot(mass.cwiseProduct(v0));
+    const double start_internal = ev.internal_energy;
     // Bent past kRetakeBend since K_d was taken: the step matrix and K_d are taken anew at
     // this step's start. Without corotated_damping nothing turns (Q = I throughout).
     if (params.corotated_damping &&
@@ -111,6 +119,12 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
         return "the state became non-finite (NaN/inf)";
       if (ref < 0.0) ref = std::max({rnorm, ev.external_norm, params.force_reference, 1e-300});
       if (rnorm <= params.tolerance * ref) break;
+      if (linearized && it > 0 && rnorm <= 0.5 * previous) {
+        const double kinetic = 0.5 * du.dot(mass.cwiseProduct(du)) / (h * h);
+        const double gain = kinetic - start_kinetic + ev.internal_energy - start_internal -
+                            external_work(sys, start_shell, state.shell, 1.0);
+        if (gain <= 1e-12 * energy_scale) break;  // round-off at rest may not stop a step
+      }
       if (it == params.max_iterations) {
         std::ostringstream m;
         m << "Newton did not converge in " << params.max_iterations << " iterations (residual "

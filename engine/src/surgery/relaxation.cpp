@@ -338,6 +338,9 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
   // damps rigid rotation, does that with a quarter of the factorisations of the corotated one
   // (DynamicsParams::corotated_damping).
   dp.corotated_damping = false;
+  // The hook changes the rest shape every step, which the linearized scheme's energy guard
+  // does not allow for (DynamicsScheme::Linearized).
+  dp.scheme = DynamicsScheme::Newton;
   const int settle = p.s_end >= 1.0 && p.settle ? p.settle_steps : 0;
   dp.steps = p.steps + settle;
   DynamicsState ds{state, {}};
