@@ -69,7 +69,8 @@ class CorotatedDamping {
 
   NodalRotations rings_;
   int dofs_per_node_;
-  std::vector<int> block_;  // per node: free index of its first DOF if all its DOFs are free, else -1
+  // Per node: the free index of its first DOF if all its DOFs are free, else -1.
+  std::vector<int> block_;
   Eigen::SparseMatrix<double> K_;
   std::vector<Vec3> reference_;  // positions where K_ was taken
   std::vector<Vec3> turned_to_;  // positions of the last turn_to

@@ -26,9 +26,9 @@ enum class DynamicsScheme {
   /// otherwise it iterates on as Newton (to `tolerance`). Why the guard: stopped at the
   /// halving test alone, the heavy strip of the dynamics tests, swinging up through a
   /// radian, ran away to over a metre without a NaN. Guarded, the motion is Newton's to 1e-5
-  /// (swinging strip) and 5e-5 (benchmark tube) at one iteration per step instead of 3-5. The energy at a step's
-  /// start is taken from the end of the last step, so the hook must not change the system
-  /// (the rest-shape relaxation, which does, uses Newton).
+  /// (swinging strip) and 5e-5 (benchmark tube) at one iteration per step instead of 3-5.
+  /// The energy at a step's start is taken from the end of the last step, so the hook must
+  /// not change the system (the rest-shape relaxation, which does, uses Newton).
   Linearized,
 };
 
