@@ -23,6 +23,13 @@ void CorotatedDamping::reset(const Eigen::SparseMatrix<double>& tangent,
   K_ = tangent;
   K_.makeCompressed();
   reference_ = x;
+  restart_rotations();
+}
+
+void CorotatedDamping::restart_rotations() {
+  // The rotations since the new reference start at the identity, which is also where the next
+  // turn_to starts its Newton iteration from (NodalRotations::compute).
+  Q_.assign(reference_.size(), Eigen::Matrix3d::Identity());
   turned_ = false;
 }
 
@@ -78,7 +85,7 @@ const Eigen::SparseMatrix<double>& CorotatedDamping::matrix() {
   K_ = W * K_ * WT;
   K_.makeCompressed();
   reference_ = turned_to_;
-  turned_ = false;
+  restart_rotations();
   return K_;
 }
 

@@ -66,6 +66,7 @@ class CorotatedDamping {
   void turn(bool transpose, Eigen::VectorXd& v) const;
 
  private:
+  void restart_rotations();  // Q := I
 
   NodalRotations rings_;
   int dofs_per_node_;
@@ -74,7 +75,7 @@ class CorotatedDamping {
   Eigen::SparseMatrix<double> K_;
   std::vector<Vec3> reference_;  // positions where K_ was taken
   std::vector<Vec3> turned_to_;  // positions of the last turn_to
-  std::vector<Eigen::Matrix3d> Q_;
+  std::vector<Eigen::Matrix3d> Q_;  // also the start of the next turn_to's iteration
   bool turned_ = false;  // Q_ is not (taken as) the identity
   mutable Eigen::VectorXd scratch_;
 };

@@ -41,6 +41,9 @@ double NodalRotations::compute(const std::vector<Vec3>& reference,
     throw InvalidArgument("NodalRotations: " + std::to_string(n) + " positions needed, got " +
                           std::to_string(reference.size()) + " and " +
                           std::to_string(current.size()));
+  // Warm start: Newton from the rotations passed in (refine_best_rotation), the SVD where
+  // there are none or Newton does not converge.
+  const bool warm = out.size() == n;
   out.resize(n);
   bend_.resize(n);
   for_each_index(n, [&](std::size_t i) {
@@ -49,21 +52,25 @@ double NodalRotations::compute(const std::vector<Vec3>& reference,
       const auto j = static_cast<std::size_t>(neighbour_[k]);
       S += (reference[j] - reference[i]) * (current[j] - current[i]).transpose();
     }
-    out[i] = best_rotation(S);
+    if (offset_[i] == offset_[i + 1]) {
+      out[i].setIdentity();
+    } else if (!(warm && refine_best_rotation(S, out[i]))) {
+      out[i] = best_rotation(S);
+    }
   });
-  // How far the shell bent: the largest angle between the rotations of neighbouring nodes.
+  // How far the shell bent: the largest angle between the rotations of neighbouring nodes,
+  // from the smallest cosine, cos = (tr(Q_i^T Q_j) - 1) / 2.
   for_each_index(n, [&](std::size_t i) {
-    double worst = 0.0;
+    double lowest = 1.0;
     for (int k = offset_[i]; k < offset_[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(neighbour_[k]);
-      const double c = 0.5 * ((out[i].transpose() * out[j]).trace() - 1.0);
-      worst = std::max(worst, std::acos(std::clamp(c, -1.0, 1.0)));
+      lowest = std::min(lowest, 0.5 * (out[i].cwiseProduct(out[j]).sum() - 1.0));
     }
-    bend_[i] = worst;
+    bend_[i] = lowest;
   });
-  double largest = 0.0;
-  for (const double m : bend_) largest = std::max(largest, m);
-  return largest;
+  double lowest = 1.0;
+  for (const double c : bend_) lowest = std::min(lowest, c);
+  return std::acos(std::clamp(lowest, -1.0, 1.0));
 }
 
 }  // namespace sutura::engine::detail

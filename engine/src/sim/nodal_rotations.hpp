@@ -22,9 +22,13 @@ class NodalRotations {
   NodalRotations(const std::vector<FaceIndices>& faces, std::size_t num_nodes);
 
   /// out[i] = rotation of node i from `reference` to `current` (both num_nodes positions).
-  /// Returns how far the shell bent between the two: the largest angle (rad) between the
-  /// rotations of two neighbouring nodes (0 for a rigid motion). Cost O(F) plus one 3x3 SVD
-  /// per node, parallel over nodes; the results do not depend on the thread count.
+  /// If `out` holds num_nodes rotations on entry (the last result for the same reference,
+  /// say), each is refined from there by Newton's method (refine_best_rotation: two or three
+  /// iterations where a time step apart), else, or where that does not converge, computed
+  /// by a 3x3 SVD (best_rotation); either way to round-off. Returns how far the shell bent
+  /// between the two: the largest angle (rad) between the rotations of two neighbouring
+  /// nodes (0 for a rigid motion). Cost O(F), parallel over nodes (about 0.3 ms warm, 1 ms
+  /// cold at 5k elements on 2 threads); the results do not depend on the thread count.
   double compute(const std::vector<Vec3>& reference, const std::vector<Vec3>& current,
                  std::vector<Eigen::Matrix3d>& out) const;
 
@@ -32,7 +36,7 @@ class NodalRotations {
   // Compressed rows: node i's neighbours are neighbour_[offset_[i] .. offset_[i + 1]).
   std::vector<int> offset_;
   std::vector<int> neighbour_;
-  mutable std::vector<double> bend_;  // per node, for the deterministic maximum
+  mutable std::vector<double> bend_;  // per node: the smallest cosine, for a deterministic minimum
 };
 
 }  // namespace sutura::engine::detail
