@@ -179,10 +179,13 @@ SimulateOp parse_simulate(Fields& f) {
   p.max_iterations = f.optional_int("max_iterations", p.max_iterations, 1, 1000);
   p.max_step_cuts = f.optional_int("max_step_cuts", p.max_step_cuts, 0, 10);
   p.corotated_damping = f.optional_bool("corotated_damping", p.corotated_damping);
-  p.scheme = f.optional_choice("scheme", "newton", {"newton", "linearized"}) == "linearized"
+  // The relaxation always uses Newton (relaxation.cpp); asked for linearized, it is an error.
+  const bool relax = f.has("relax");
+  p.scheme = f.optional_choice("scheme", relax ? "newton" : "linearized",
+                               {"newton", "linearized"}) == "linearized"
                  ? engine::DynamicsScheme::Linearized
                  : engine::DynamicsScheme::Newton;
-  if (p.scheme == engine::DynamicsScheme::Linearized && f.has("relax"))
+  if (p.scheme == engine::DynamicsScheme::Linearized && relax)
     f.fail("scheme", "the relaxation changes the rest shape every step: it uses newton");
   p.linear_solver = linear_solver(f, p.linear_solver);
   if (auto r = f.optional_object("relax")) {

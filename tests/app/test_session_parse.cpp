@@ -62,6 +62,20 @@ TEST(SessionParse, AllOpsWithFieldsAndLineNumbers) {
   EXPECT_EQ(std::get<ExportOp>(s.actions[3].op).file, std::filesystem::path("aorta.ply"));
 }
 
+// The dynamics scheme defaults to linearized, and to Newton with a relaxation (which uses
+// Newton only).
+TEST(SessionParse, SimulateSchemeDefaultsToLinearizedAndToNewtonWithARelaxation) {
+  using sutura::engine::DynamicsScheme;
+  Session s = parse(
+      "{\"op\": \"simulate\", \"steps\": 5}\n"
+      "{\"op\": \"simulate\", \"steps\": 5, \"scheme\": \"newton\"}\n"
+      "{\"op\": \"simulate\", \"relax\": {\"steps\": 3}}\n");
+  ASSERT_EQ(s.actions.size(), 3u);
+  EXPECT_EQ(std::get<SimulateOp>(s.actions[0].op).params.scheme, DynamicsScheme::Linearized);
+  EXPECT_EQ(std::get<SimulateOp>(s.actions[1].op).params.scheme, DynamicsScheme::Newton);
+  EXPECT_EQ(std::get<SimulateOp>(s.actions[2].op).params.scheme, DynamicsScheme::Newton);
+}
+
 TEST(SessionParse, PatchShapes) {
   Session s = parse(
       "{\"op\": \"generate\", \"object\": \"p\", \"shape\": \"diamond\", \"length\": 12, "
