@@ -268,7 +268,8 @@ json Run::execute(const SimulateOp& op) {
   for (SceneObject* o : objs) commit_pending_loads(*o);
   return {{"model", model->name()}, {"steps", r.steps_done},
           {"newton_iterations", r.newton_iterations}, {"factorizations", r.factorizations},
-          {"step_cuts", r.step_cuts}, {"kinetic_energy", r.kinetic_energy},
+          {"step_cuts", r.step_cuts}, {"restarts", r.restarts},
+          {"kinetic_energy", r.kinetic_energy},
           {"strain_energy", r.strain_energy}, {"residual", r.residual}};
 }
 

@@ -63,8 +63,9 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   Evaluation ev;
 
   // One backward Euler step of size h from the current state; returns why it failed ("" if
-  // it did not). The caller restores the state after a failure.
-  const auto step_once = [&](double h) -> std::string {
+  // it did not). The caller restores the state after a failure. `from_rest_increment`: Newton
+  // starts from zero increment instead of the predictor (see advance).
+  const auto step_once = [&](double h, bool from_rest_increment) -> std::string {
     const double damp_m = 1.0 / (h * h) + params.mass_damping / h;
     const double damp_k = params.stiffness_damping / h;
     if (h != factor_h) have_factor = false;
@@ -98,12 +99,15 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     Eigen::VectorXd du;
     if (linearized) {
       du = Eigen::VectorXd::Zero(v0.size());
+    } else if (from_rest_increment) {
+      du = Eigen::VectorXd::Zero(v0.size());
+      ev = evaluate(sys, map, state.shell, 1.0, false);  // a hook may have changed the system
     } else {
       du = h * v0;
       apply_increment(state.shell, map.expand(du), d);
       ev = evaluate(sys, map, state.shell, 1.0, false);
     }
-    bool du_zero = linearized;  // the damping force of a zero increment is zero
+    bool du_zero = du.squaredNorm() == 0.0;  // the damping force of a zero increment is zero
     Eigen::VectorXd damping_force;  // Q K_d Q^T du
     const auto residual = [&]() -> Eigen::VectorXd {
       Eigen::VectorXd R = mass.cwiseProduct(du * damp_m - v0 / h) + ev.residual;
@@ -193,10 +197,25 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   std::function<std::string(double, int)> advance = [&](double h, int depth) -> std::string {
     const DynamicsState start = state;
     const Evaluation ev_start = ev;
-    std::string failure = step_once(h);
+    std::string failure = step_once(h, false);
     if (failure.empty()) return {};
     state = start;
     ev = ev_start;
+    // Newton that failed from the constant-velocity predictor is tried once more from zero
+    // increment before the step is cut. Why: where the shell turns fast, the predictor moves
+    // its nodes along straight lines and stretches it; on a heavy strip swinging up
+    // (Dynamics.NewtonRetriesAFailedStepFromZeroIncrement) the stiff membrane's reaction to
+    // that stretch sent Newton off, in one run even at dt/16, where from zero increment it
+    // converged.
+    if (!linearized && state.velocity.squaredNorm() > 0.0) {
+      failure = step_once(h, true);
+      if (failure.empty()) {
+        ++result.restarts;
+        return {};
+      }
+      state = start;
+      ev = ev_start;
+    }
     if (depth == params.max_step_cuts) return failure;
     ++result.step_cuts;
     for (int half = 0; half < 2; ++half) {

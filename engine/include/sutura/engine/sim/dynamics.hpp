@@ -90,6 +90,7 @@ struct DynamicsResult {
   int newton_iterations = 0;
   int factorizations = 0;       ///< step matrices assembled and factorised
   int step_cuts = 0;            ///< failed (sub-)steps retried as two half steps
+  int restarts = 0;  ///< Newton steps that failed from the predictor and converged from zero increment
   double kinetic_energy = 0.0;  ///< N*mm at the end
   double strain_energy = 0.0;   ///< N*mm at the end
   double residual = 0.0;        ///< static residual |g_int - f_ext| at the end (free DOFs)
