@@ -55,7 +55,12 @@ json patch_op(const std::string& object, const std::string& shape, const engine:
 
 json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
   json op = {{"op", "simulate"}, {"steps", steps}, {"dt", dt}};
-  if (relax_steps > 0) op["relax"] = {{"steps", relax_steps}};
+  // The scheme is recorded, so the session replays the same way should the default change
+  // (it did on 2026-12-03, from newton to linearized).
+  if (relax_steps > 0)
+    op["relax"] = {{"steps", relax_steps}};
+  else
+    op["scheme"] = "linearized";
   if (collapse_barrier) op["collapse_barrier"] = true;
   return op;
 }

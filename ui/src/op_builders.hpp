@@ -37,7 +37,8 @@ nlohmann::json join_op(const std::string& object, const ChainEnds& a, const Chai
 nlohmann::json patch_op(const std::string& object, const std::string& shape,
                         const engine::Vec3& lip_start, const engine::Vec3& lip_end, double width,
                         const nlohmann::json& material);
-/// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation).
+/// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
+/// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);
 /// Cross-section of `object` by a plane, reported under `name`.
 nlohmann::json measure_op(const std::string& object, const std::string& name,

@@ -2,6 +2,8 @@
 // The rotation that best maps one set of edge vectors onto another (private to engine/src):
 // the orthogonal Procrustes problem, solved by the polar decomposition of the covariance
 // (Sorkine & Alexa 2007, as-rigid-as-possible; Mueller et al. 2005, shape matching).
+#include <cmath>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -63,9 +63,13 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
   Evaluation ev;
 
   // One backward Euler step of size h from the current state; returns why it failed ("" if
-  // it did not). The caller restores the state after a failure. `from_rest_increment`: Newton
-  // starts from zero increment instead of the predictor (see advance).
-  const auto step_once = [&](double h, bool from_rest_increment) -> std::string {
+  // it did not). The caller restores the state after a failure. `from_zero_increment`: Newton
+  // starts from zero increment instead of the predictor, its tolerance relative to
+  // `retry_ref` (see advance).
+  double step_ref = 0.0;  // the reference of the last step_once's tolerance
+  const auto step_once = [&](double h, bool from_zero_increment,
+                             double retry_ref = -1.0) -> std::string {
+    step_ref = retry_ref;
     const double damp_m = 1.0 / (h * h) + params.mass_damping / h;
     const double damp_k = params.stiffness_damping / h;
     if (h != factor_h) have_factor = false;
@@ -99,7 +103,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     Eigen::VectorXd du;
     if (linearized) {
       du = Eigen::VectorXd::Zero(v0.size());
-    } else if (from_rest_increment) {
+    } else if (from_zero_increment) {
       du = Eigen::VectorXd::Zero(v0.size());
       ev = evaluate(sys, map, state.shell, 1.0, false);  // a hook may have changed the system
     } else {
@@ -117,7 +121,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       }
       return R;
     };
-    double ref = -1.0, previous = -1.0;
+    double ref = retry_ref, previous = -1.0;
     // K_d may only change at the start of a step: changing it mid-step would move the root of
     // R while Newton chases it. Within a step the step matrix takes the step's turned K_d.
     const auto rebuild = [&](bool new_damping) {
@@ -136,6 +140,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
         return "the state became non-finite (NaN/inf)";
       if (ref < 0.0) ref = std::max({rnorm, ev.external_norm, params.force_reference, 1e-300});
+      step_ref = ref;
       if (rnorm <= params.tolerance * ref) break;
       if (linearized && it > 0 && rnorm <= 0.5 * previous) {
         const double kinetic = 0.5 * du.dot(mass.cwiseProduct(du)) / (h * h);
@@ -207,12 +212,17 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     // (Dynamics.NewtonRetriesAFailedStepFromZeroIncrement) the stiff membrane's reaction to
     // that stretch sent Newton off, in one run even at dt/16, where from zero increment it
     // converged.
+    // The retry starts on a new step matrix (the failed attempt's was taken on its way off)
+    // and keeps the attempt's tolerance: measured against the residual at zero increment,
+    // which holds the inertia M v0 / h, it would be looser.
     if (!linearized && state.velocity.squaredNorm() > 0.0) {
-      failure = step_once(h, true);
-      if (failure.empty()) {
+      have_factor = false;
+      const std::string retry = step_once(h, true, step_ref);
+      if (retry.empty()) {
         ++result.restarts;
         return {};
       }
+      failure += "; from zero increment: " + retry;
       state = start;
       ev = ev_start;
     }

@@ -1,6 +1,7 @@
 // The Procrustes rotation (best_rotation.hpp): by SVD, and by Newton's method from an estimate.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "best_rotation.hpp"
@@ -98,6 +99,10 @@ TEST(BestRotation, NewtonNeverReturnsAnotherRotation) {
   }
   EXPECT_GT(converged, 0);
   EXPECT_GT(declined, 0);
+  // Started at a saddle, a half turn about a singular axis from the answer: declined.
+  const Matrix3d D = Vector3d(3.0, 2.0, 1.0).asDiagonal();
+  Matrix3d half = rotation(Vector3d(M_PI, 0.0, 0.0));
+  EXPECT_FALSE(refine_best_rotation(D, half));
   // Edges along one line leave the turn about it free: declined.
   const Vector3d a(1.0, 2.0, -0.5);
   Matrix3d R = Matrix3d::Identity();

@@ -73,6 +73,27 @@ TEST(NodalRotations, BendIsTheTurnBetweenNeighbouringNodes) {
   }
 }
 
+// Warm-started from the last result (Newton, refine_best_rotation), the rotations are the
+// ones computed from scratch (SVD), for a tube turned and bent a little further.
+TEST(NodalRotations, WarmStartGivesTheRotationsComputedFromScratch) {
+  const SurfaceMesh tube = make_tube({4.0, 10.0, 12, 6});
+  const detail::NodalRotations rings(tube.faces(), tube.num_vertices());
+  const auto bent = [&](double a) {
+    std::vector<Vec3> out;
+    for (const Vec3& p : tube.positions())
+      out.push_back(rotation(a * p.z() / 10.0, Vec3(1, 0, 0)) * p);  // twisted and bent along z
+    return moved(out, rotation(a, Vec3(0.3, 1, -0.2)), Vec3::Zero());
+  };
+  std::vector<Eigen::Matrix3d> warm, cold;
+  rings.compute(tube.positions(), bent(0.2), warm);
+  const double bend_warm = rings.compute(tube.positions(), bent(0.21), warm);
+  const double bend_cold = rings.compute(tube.positions(), bent(0.21), cold);
+  ASSERT_EQ(warm.size(), cold.size());
+  for (std::size_t i = 0; i < warm.size(); ++i) EXPECT_LT((warm[i] - cold[i]).norm(), 1e-12);
+  EXPECT_NEAR(bend_warm, bend_cold, 1e-12);
+  EXPECT_GT(bend_cold, 0.0);
+}
+
 TEST(NodalRotations, NodeInNoFaceKeepsTheIdentityAndBadInputThrows) {
   const std::vector<FaceIndices> faces{{0, 1, 2}};
   const detail::NodalRotations rings(faces, 4);

@@ -287,7 +287,7 @@ TEST(Dynamics, LinearizedSchemeSettlesTheHeavyStripAtLargeSteps) {
   const Vec3 ud = dyn.tip_displacement();
   EXPECT_LT((ud - us).norm(), 1e-3 * us.norm()) << ud.transpose() << " / " << us.transpose();
   EXPECT_LT(r.kinetic_energy, 1e-9 * r.strain_energy);
-  EXPECT_GT(r.newton_iterations, r.steps_done);  // the guard made some steps iterate on
+  EXPECT_GT(r.newton_iterations, r.steps_done);  // some steps iterated on
 }
 
 // Newton from the constant-velocity predictor fails at some steps of a heavy strip swinging up

@@ -17,8 +17,10 @@ namespace sutura::engine {
 
 /// How far each step's nonlinear equation is solved.
 enum class DynamicsScheme {
-  /// Backward Euler proper: Newton iterations until the residual is below `tolerance`.
-  /// What the rest-shape relaxation uses (relaxation.cpp).
+  /// Backward Euler proper: Newton iterations until the residual is below `tolerance`,
+  /// from the constant-velocity predictor; a step that fails from there is tried once more
+  /// from zero increment (to the same tolerance) before it is cut. What the rest-shape
+  /// relaxation uses (relaxation.cpp).
   Newton,
   /// Linearly implicit Euler (Baraff & Witkin 1998; SOFA's implicit Euler, the solver of the
   /// paper's prototype), guarded: a step starts from zero increment at the last step's
@@ -38,7 +40,7 @@ enum class DynamicsScheme {
 
 struct DynamicsParams {
   /// Linearized by default: on the benchmark tube a step of a running simulation takes 5 ms
-  /// instead of Newton's 17 (model 1, 5k elements), and the motion differs from Newton's by
+  /// instead of Newton's 16 (model 1, 5k elements), and the motion differs from Newton's by
   /// 1e-3 of the travel where backward Euler's own time error is 6 % (docs/performance.md).
   DynamicsScheme scheme = DynamicsScheme::Linearized;
   double dt = 1e-3;            ///< s, > 0
@@ -97,9 +99,11 @@ struct DynamicsResult {
   std::string message;          ///< why the run stopped early (state rolled back to the last good step)
 };
 
-/// Called before every step with the step index; lets relaxation update the rest state
-/// (the system's problem.rest may be changed through the pointer it owns) and report progress.
-/// Return false to stop.
+/// Called before every step with the step index; reports progress, and lets the relaxation
+/// update the rest state (the system's problem.rest may be changed through the pointer it
+/// owns) — with DynamicsScheme::Newton only: the linearized scheme starts each step from the
+/// last step's gradient and energy, which such a change would leave stale. Return false to
+/// stop.
 using StepHook = std::function<bool(int step)>;
 
 /// Advances `state` by params.steps steps of size dt (a failed step is retried in halves, see
