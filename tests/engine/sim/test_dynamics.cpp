@@ -39,6 +39,29 @@ TwoSwings swing_strip(DynamicsParams pa, DynamicsParams pb) {
   return out;
 }
 
+// The Sze strip (case 3.1, P = 4, nl x 2 elements) made heavy (density 1e-4 t/mm^3), swung
+// up from rest with `p`, and its static equilibrium under the same load.
+struct HeavySwing {
+  DynamicsResult r;
+  Vec3 tip, tip_static;  // displacements at the end of the run and at equilibrium
+};
+
+HeavySwing swing_heavy_strip(int nl, const DynamicsParams& p) {
+  HeavySwing out;
+  Cantilever stat(make_corotational_shell(), 4.0, nl, 2);
+  StaticSolverParams sp;
+  sp.load_steps = 4;
+  if (!solve_static(stat.sys, stat.state, sp).converged) ADD_FAILURE() << "static solve";
+  out.tip_static = stat.tip_displacement();
+  Cantilever dyn(make_corotational_shell(), 4.0, nl, 2);
+  dyn.materials[0].density = 1e-4;
+  DynamicsState s{dyn.state, {}};
+  out.r = simulate_dynamics(dyn.sys, s, p);
+  dyn.state = s.shell;
+  out.tip = dyn.tip_displacement();
+  return out;
+}
+
 }  // namespace
 
 TEST(Dynamics, LumpedMassSumsToTotalMass) {
@@ -210,12 +233,6 @@ TEST(Dynamics, SinglePrecisionSolvesOnAReusedMatrixGiveTheSameMotion) {
 // (corotated_damping false) it creeps instead, held by damping of its rigid rotation: after 2 s the tip is at w = 5.3
 // of 6.7.
 TEST(Dynamics, HeavyStripSwingsUpToTheStaticEquilibriumThroughLargeRotations) {
-  Cantilever stat(make_corotational_shell(), 4.0, 20, 2);
-  StaticSolverParams sp;
-  sp.load_steps = 4;
-  ASSERT_TRUE(solve_static(stat.sys, stat.state, sp).converged);
-  const Vec3 us = stat.tip_displacement();
-  ASSERT_GT(us.z(), 6.0);  // large deflection (6.698 in the benchmark)
   struct Variant {
     bool corotated;
     DynamicsScheme scheme;
@@ -224,22 +241,20 @@ TEST(Dynamics, HeavyStripSwingsUpToTheStaticEquilibriumThroughLargeRotations) {
                           Variant{true, DynamicsScheme::Linearized},
                           Variant{false, DynamicsScheme::Newton}}) {
     const bool corotated = v.corotated;
-    Cantilever dyn(make_corotational_shell(), 4.0, 20, 2);
-    dyn.materials[0].density = 1e-4;
     DynamicsParams p;
     p.dt = 5e-3;
     p.steps = 400;
     p.mass_damping = 100.0;
     p.corotated_damping = corotated;
     p.scheme = v.scheme;
-    DynamicsState s{dyn.state, {}};
-    const DynamicsResult r = simulate_dynamics(dyn.sys, s, p);
-    ASSERT_TRUE(r.ok) << r.message;
-    dyn.state = s.shell;
-    const Vec3 ud = dyn.tip_displacement();
+    const HeavySwing h = swing_heavy_strip(20, p);
+    ASSERT_TRUE(h.r.ok) << h.r.message;
+    const Vec3& ud = h.tip;
+    const Vec3& us = h.tip_static;
+    ASSERT_GT(us.z(), 6.0);  // large deflection (6.698 in the benchmark)
     if (corotated) {
       EXPECT_LT((ud - us).norm(), 1e-3 * us.norm()) << ud.transpose() << " / " << us.transpose();
-      EXPECT_LT(r.kinetic_energy, 1e-9 * r.strain_energy);
+      EXPECT_LT(h.r.kinetic_energy, 1e-9 * h.r.strain_energy);
     } else {  // why the damping is corotated: unturned, it still creeps
       EXPECT_GT((ud - us).norm(), 0.1 * us.norm()) << ud.transpose() << " / " << us.transpose();
     }
@@ -268,26 +283,18 @@ TEST(Dynamics, LinearizedSchemeFollowsNewtonWithAboutOneIterationPerStep) {
 // (strain energy 3e8 N*mm after 2 s, against 9.2 at equilibrium); guarded, the steps that would
 // gain iterate on, and it settles to the static equilibrium.
 TEST(Dynamics, LinearizedSchemeSettlesTheHeavyStripAtLargeSteps) {
-  Cantilever stat(make_corotational_shell(), 4.0, 20, 2);
-  StaticSolverParams sp;
-  sp.load_steps = 4;
-  ASSERT_TRUE(solve_static(stat.sys, stat.state, sp).converged);
-  const Vec3 us = stat.tip_displacement();
-  Cantilever dyn(make_corotational_shell(), 4.0, 20, 2);
-  dyn.materials[0].density = 1e-4;
   DynamicsParams p;
   p.scheme = DynamicsScheme::Linearized;
   p.dt = 5e-2;
   p.steps = 40;
   p.mass_damping = 100.0;
-  DynamicsState s{dyn.state, {}};
-  const DynamicsResult r = simulate_dynamics(dyn.sys, s, p);
-  ASSERT_TRUE(r.ok) << r.message;
-  dyn.state = s.shell;
-  const Vec3 ud = dyn.tip_displacement();
+  const HeavySwing h = swing_heavy_strip(20, p);
+  ASSERT_TRUE(h.r.ok) << h.r.message;
+  const Vec3& ud = h.tip;
+  const Vec3& us = h.tip_static;
   EXPECT_LT((ud - us).norm(), 1e-3 * us.norm()) << ud.transpose() << " / " << us.transpose();
-  EXPECT_LT(r.kinetic_energy, 1e-9 * r.strain_energy);
-  EXPECT_GT(r.newton_iterations, r.steps_done);  // some steps iterated on
+  EXPECT_LT(h.r.kinetic_energy, 1e-9 * h.r.strain_energy);
+  EXPECT_GT(h.r.newton_iterations, h.r.steps_done);  // some steps iterated on
 }
 
 // Newton from the constant-velocity predictor fails at some steps of a heavy strip swinging up
@@ -295,23 +302,15 @@ TEST(Dynamics, LinearizedSchemeSettlesTheHeavyStripAtLargeSteps) {
 // the stiff membrane); tried once more from zero increment, some of those steps converge
 // without being cut, and the strip settles.
 TEST(Dynamics, NewtonRetriesAFailedStepFromZeroIncrement) {
-  Cantilever stat(make_corotational_shell(), 4.0, 32, 2);
-  StaticSolverParams sp;
-  sp.load_steps = 4;
-  ASSERT_TRUE(solve_static(stat.sys, stat.state, sp).converged);
-  const Vec3 us = stat.tip_displacement();
-  Cantilever dyn(make_corotational_shell(), 4.0, 32, 2);
-  dyn.materials[0].density = 1e-4;
   DynamicsParams p;
   p.scheme = DynamicsScheme::Newton;
   p.dt = 5e-3;
   p.steps = 400;
   p.mass_damping = 100.0;
-  DynamicsState s{dyn.state, {}};
-  const DynamicsResult r = simulate_dynamics(dyn.sys, s, p);
-  ASSERT_TRUE(r.ok) << r.message;
-  EXPECT_GT(r.restarts, 0);
-  dyn.state = s.shell;
-  const Vec3 ud = dyn.tip_displacement();
+  const HeavySwing h = swing_heavy_strip(32, p);
+  ASSERT_TRUE(h.r.ok) << h.r.message;
+  EXPECT_GT(h.r.restarts, 0);
+  const Vec3& ud = h.tip;
+  const Vec3& us = h.tip_static;
   EXPECT_LT((ud - us).norm(), 1e-3 * us.norm()) << ud.transpose() << " / " << us.transpose();
 }
