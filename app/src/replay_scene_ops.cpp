@@ -1,6 +1,6 @@
 // Execution of the scene ops (generate, load, snapshot, export, report) and the report.
 #include "replay_run.hpp"
-#include "surgery_edits.hpp"
+#include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
@@ -71,7 +71,7 @@ json Run::execute(const GenerateOp& op) {
   }
   if (op.append) {
     SceneObject& obj = object(op.object);
-    detail::append_component(obj, mesh, mesh, obj.sim.materials.front());
+    engine::append_component(obj.mesh, obj.sim, mesh, mesh, obj.sim.materials.front());
     obj.before = obj.mesh;  // the new part is part of the pre-operative scene
     return {{"object", op.object}, {"appended", true}, {"vertices", obj.mesh.num_vertices()},
             {"faces", obj.mesh.num_faces()}};

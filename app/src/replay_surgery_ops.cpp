@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "replay_run.hpp"
-#include "surgery_edits.hpp"
+#include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
 #include "sutura/engine/measure/lumen_profile.hpp"
@@ -17,6 +17,25 @@
 namespace sutura::app::detail {
 
 namespace {
+
+// Vertices a remesh must keep where they are: any fixed DOF, a nodal load (applied or pending).
+std::vector<bool> kept_vertices(const SceneObject& obj) {
+  std::vector<bool> keep(obj.mesh.num_vertices(), false);
+  for (std::size_t v = 0; v < keep.size(); ++v)
+    for (int dof = 0; dof < 6; ++dof) keep[v] = keep[v] || obj.sim.constraints.is_fixed(v, dof);
+  for (const engine::Loads* l : {&obj.sim.applied_loads, &obj.sim.pending_loads})
+    for (const auto& n : l->nodal)
+      if (n.node < keep.size()) keep[n.node] = true;
+  return keep;
+}
+
+json quality_json(const engine::MeshQuality& q) {
+  return {{"faces", q.faces},
+          {"min_angle_deg", q.min_angle_deg},
+          {"p5_angle_deg", q.p5_angle_deg},
+          {"min_edge_mm", q.min_edge},
+          {"max_edge_mm", q.max_edge}};
+}
 
 // Keep memory bounded on long GUI sessions: each entry is a copy of every object.
 constexpr std::size_t kMaxUndo = 64;
@@ -101,10 +120,12 @@ json Run::execute(const RedoOp&) {
 json Run::execute(const InciseOp& op) {
   remember();
   SceneObject& obj = object(op.object);
-  const engine::IncisionResult r = engine::incise(obj.mesh, op.points, op.params);
-  apply_edit(obj, r.mesh, r.maps);
-  obj.marks.incisions.push_back(r.left);
-  obj.marks.incisions.push_back(r.right);
+  engine::IncisionParams params = op.params;
+  if (params.remesh) params.constrained_vertices = kept_vertices(obj);
+  const engine::IncisionResult r = engine::incise(obj.mesh, op.points, params);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  obj.sim.marks.incisions.push_back(r.left);
+  obj.sim.marks.incisions.push_back(r.right);
   json j = {{"object", op.object},
             {"mode", op.params.mode == engine::IncisionMode::SnapToEdges ? "snap" : "cut"},
             {"length_mm", r.length},
@@ -113,6 +134,7 @@ json Run::execute(const InciseOp& op) {
             {"snapped_points", r.snapped_points},
             {"starts_on_boundary", r.starts_on_boundary},
             {"ends_on_boundary", r.ends_on_boundary}};
+  if (r.remeshed) j["remesh"] = {{"before", quality_json(r.band_before)}, {"after", quality_json(r.band_after)}};
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -138,7 +160,7 @@ json Run::execute(const JoinOp& op) {
         if (obj.sim.constraints.is_fixed(v, dof)) params.held[v] = true;
   }
   const engine::JoinResult r = engine::join(obj.mesh, pairs, params);
-  apply_edit(obj, r.mesh, r.maps);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
   std::vector<bool> moved_faces;
   if (op.placement != engine::SuturePlacement::Mean) {
     // The placement moved the copies and the vertices around them away from their carried
@@ -150,8 +172,8 @@ json Run::execute(const JoinOp& op) {
     for (const auto v : r.displaced)
       for (const auto f : obj.mesh.vertex_faces(v)) moved_faces[f.index()] = true;
   }
-  start_relaxation(obj, r.merged, moved_faces);
-  for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+  engine::start_relaxation(obj.mesh, obj.sim, r.merged, moved_faces);
+  for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
   json sutures = json::array();
   for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
   json j = {{"object", op.object},
@@ -167,7 +189,7 @@ json Run::execute(const PatchOp& op) {
   SceneObject& obj = object(op.object);
   const engine::PatchPlan plan = engine::plan_patch(obj.mesh, op.start, op.end, op.params);
   const std::size_t host_faces = obj.mesh.num_faces();
-  const std::size_t offset = append_component(obj, plan.placed, plan.rest, op.material);
+  const std::size_t offset = engine::append_component(obj.mesh, obj.sim, plan.placed, plan.rest, op.material);
   auto shifted = [&](engine::BoundaryChain c) {
     for (auto& v : c.vertices) v = engine::VertexId(v.index() + offset);
     return c;
@@ -179,9 +201,9 @@ json Run::execute(const PatchOp& op) {
   std::vector<bool> patch_faces(r.mesh.num_faces(), false);
   for (std::size_t f = 0; f < r.maps.faces.size(); ++f)
     patch_faces[f] = r.maps.faces[f].parent.index() >= host_faces;
-  apply_edit(obj, r.mesh, r.maps);
-  start_relaxation(obj, r.merged, patch_faces);
-  for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  engine::start_relaxation(obj.mesh, obj.sim, r.merged, patch_faces);
+  for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
   json sutures = json::array();
   for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
   json j = {{"object", op.object},
@@ -205,7 +227,7 @@ json Run::execute(const ResectOp& op) {
     seed /= double(op.planes.size());
   }
   const engine::ResectionResult rr = engine::resect(obj.mesh, op.planes, seed, op.params);
-  apply_edit(obj, rr.mesh, rr.maps);
+  engine::apply_edit(obj.mesh, obj.sim, rr.mesh, rr.maps);
   json j = {{"object", op.object},
             {"removed_faces", rr.removed_faces},
             {"removed_area_mm2", rr.removed_area}};
@@ -225,9 +247,9 @@ json Run::execute(const ResectOp& op) {
     const engine::JoinResult r =
         engine::join(obj.mesh, {{start_towards(obj.mesh, rr.loops[0], ca, u),
                                  start_towards(obj.mesh, rr.loops[1], cb, u)}});
-    apply_edit(obj, r.mesh, r.maps);
-    start_relaxation(obj, r.merged, {});
-    for (const auto& seam : r.seams) obj.marks.sutures.push_back(seam);
+    engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+    engine::start_relaxation(obj.mesh, obj.sim, r.merged, {});
+    for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
     j["anastomosis"] = suture_report(r.sutures[0]);
   }
   j["mesh"] = mesh_counts(obj);

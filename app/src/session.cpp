@@ -48,13 +48,13 @@ const std::vector<std::string>& known_ops() {
   return ops;
 }
 
-Action parse_action(const json& j, const std::filesystem::path& file, int line_no) {
+Action parse_action(const json& j, const std::filesystem::path& file, int line_no, int version) {
   const std::string fname = file.string();
   if (!j.is_object()) throw SessionError(fname, line_no, "", "", "each line must be a JSON object");
   if (!j.contains("op")) throw SessionError(fname, line_no, "", "op", "missing");
   if (!j["op"].is_string()) throw SessionError(fname, line_no, "", "op", "must be a string");
   const std::string name = j["op"].get<std::string>();
-  Fields f(j, fname, line_no, name);
+  Fields f(j, fname, line_no, name, version);
   f.required_string("op");
   f.optional_string("note", "");  // free text for the reader of the session
   Action action;
@@ -118,7 +118,7 @@ Session parse_session(const std::string& text, const std::filesystem::path& file
       continue;
     }
 
-    session.actions.push_back(parse_action(j, file, line_no));
+    session.actions.push_back(parse_action(j, file, line_no, session.version));
   }
   if (!have_header) throw SessionError(fname, 0, "", "", "empty session: no header line");
   return session;

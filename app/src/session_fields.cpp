@@ -17,8 +17,12 @@ std::string type_name(const json& v) {
 }
 }  // namespace
 
-Fields::Fields(const json& object, std::string file, int line, std::string op)
-    : object_(object), file_(std::move(file)), line_(line), op_(std::move(op)) {}
+Fields::Fields(const json& object, std::string file, int line, std::string op, int format_version)
+    : object_(object),
+      file_(std::move(file)),
+      line_(line),
+      op_(std::move(op)),
+      format_version_(format_version) {}
 
 bool Fields::has(const std::string& key) const { return object_.contains(key); }
 

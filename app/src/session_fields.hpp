@@ -12,7 +12,11 @@ namespace sutura::app::detail {
 
 class Fields {
  public:
-  Fields(const nlohmann::json& object, std::string file, int line, std::string op);
+  Fields(const nlohmann::json& object, std::string file, int line, std::string op,
+         int format_version = kSessionFormatVersion);
+
+  /// The session format version of the line (defaults that changed depend on it).
+  [[nodiscard]] int format_version() const { return format_version_; }
 
   [[nodiscard]] bool has(const std::string& key) const;
   [[noreturn]] void fail(const std::string& field, const std::string& problem) const;
@@ -56,6 +60,7 @@ class Fields {
   int line_;
   std::string op_;
   std::string prefix_;  // "camera." for nested objects
+  int format_version_;
   std::set<std::string> used_;
 };
 

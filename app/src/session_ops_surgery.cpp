@@ -56,6 +56,17 @@ InciseOp parse_incise(Fields& f) {
   op.params.sliver_fraction = f.optional_positive("sliver_fraction", op.params.sliver_fraction);
   if (op.params.sliver_fraction >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
+  // Version 1 sessions were recorded before the band remesh existed: they keep the raw trace.
+  op.params.remesh = f.optional_bool("remesh", f.format_version() >= 2);
+  op.params.target_edge_length =  // absent: the host's spacing (0)
+      f.has("target_edge_length") ? f.optional_positive("target_edge_length", 1.0) : 0.0;
+  op.params.band_width = f.optional_positive("band_width", op.params.band_width);
+  if (op.params.band_width > 20.0) f.fail("band_width", "must be at most 20 edge lengths");
+  op.params.grading = f.optional_number("grading", op.params.grading);
+  if (!(op.params.grading >= 1.0 && op.params.grading <= 10.0)) f.fail("grading", "must be in [1, 10]");
+  if (op.params.mode == engine::IncisionMode::SnapToEdges && f.has("remesh") && op.params.remesh)
+    f.fail("remesh", "a snapped incision follows mesh edges and is not remeshed");
+  if (op.params.mode == engine::IncisionMode::SnapToEdges) op.params.remesh = false;
   return op;
 }
 

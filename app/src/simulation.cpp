@@ -99,7 +99,9 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
   velocity_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(nodes * d));
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const auto& v = objects[i]->sim.velocity;
-    if (v.size() == static_cast<Eigen::Index>(objects[i]->mesh.num_vertices() * d))
+    // A velocity left by another model means other DOFs: that object starts at rest.
+    if (objects[i]->sim.state_model == model.name() &&
+        v.size() == static_cast<Eigen::Index>(objects[i]->mesh.num_vertices() * d))
       velocity_.segment(static_cast<Eigen::Index>(node_offset_[i] * d), v.size()) = v;
   }
 }
@@ -113,6 +115,7 @@ void MergedSystem::write_back() {
     std::copy(state_.D.begin() + off, state_.D.begin() + off + n, o->sim.state.D.begin());
     o->sim.velocity = velocity_.segment(static_cast<Eigen::Index>(off * d),
                                         static_cast<Eigen::Index>(n * d));
+    o->sim.state_model = system_.model->name();
     o->mesh.set_positions(o->sim.state.x);
   }
 }

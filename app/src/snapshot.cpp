@@ -97,8 +97,8 @@ ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
     }
   }
   if (op.marks && &state == &obj.mesh) {
-    for (const auto& c : obj.marks.incisions) a.incisions.push_back(polyline(state, c));
-    for (const auto& c : obj.marks.sutures) a.sutures.push_back(polyline(state, c));
+    for (const auto& c : obj.sim.marks.incisions) a.incisions.push_back(polyline(state, c));
+    for (const auto& c : obj.sim.marks.sutures) a.sutures.push_back(polyline(state, c));
   }
   a.color = color;
   return a;

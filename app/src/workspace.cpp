@@ -10,10 +10,7 @@ SceneObject& Workspace::add(std::string name, engine::SurfaceMesh mesh) {
   SceneObject obj;
   obj.name = std::move(name);
   obj.before = mesh;
-  obj.sim.state = engine::state_from_mesh(mesh);
-  obj.sim.rest = engine::rest_from_state(mesh, obj.sim.state);
-  obj.sim.face_material.assign(mesh.num_faces(), 0);
-  obj.sim.reference = mesh.positions();
+  obj.sim = engine::attributes_at_rest(mesh);
   obj.mesh = std::move(mesh);
   objects_.push_back(std::move(obj));
   return objects_.back();

@@ -35,7 +35,8 @@ json fix_vertices_op(const std::string& object, const std::vector<int>& vertices
 json incise_op(const std::string& object, const std::vector<engine::Vec3>& points, bool snap) {
   json pts = json::array();
   for (const auto& p : points) pts.push_back(point_json(p));
-  return {{"op", "incise"}, {"object", object}, {"points", pts}, {"mode", snap ? "snap" : "cut"}};
+  return {{"op", "incise"}, {"object", object}, {"points", pts}, {"mode", snap ? "snap" : "cut"},
+          {"remesh", !snap}};
 }
 
 json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, bool onto_b) {

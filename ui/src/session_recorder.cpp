@@ -1,5 +1,7 @@
 #include "sutura/ui/session_recorder.hpp"
 
+#include "sutura/app/session.hpp"
+
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -37,7 +39,7 @@ SessionRecorder SessionRecorder::create(const fs::path& file, const std::string&
   if (out == nullptr) fail(file, "cannot be created");
   SessionRecorder r(file, out, 0);
   const nlohmann::json header = {{"format", "sutura-session"},
-                                 {"version", 1},
+                                 {"version", app::kSessionFormatVersion},
                                  {"units", "mm"},
                                  {"description", description}};
   r.append(header);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "sutura/engine/errors.hpp"
+
 namespace sutura::engine {
 
 namespace {
@@ -64,7 +66,59 @@ std::vector<Vec3> carry_points(const EditMaps& maps, const std::vector<Vec3>& ol
   return out;
 }
 
-RestState carry_rest(const EditMaps& maps, const RestState& old) {
+namespace {
+
+// Rest of a Resampled face by strain transfer (carry.hpp).
+ElementRest resampled_rest(const FaceOrigin& o, const ElementRest& p, const FaceIndices& new_face,
+                           const EditGeometry& g) {
+  const FaceIndices& pf = g.old_faces[o.parent.index()];
+  const Vec3 x0 = g.old_state.x[pf[0]], x1 = g.old_state.x[pf[1]], x2 = g.old_state.x[pf[2]];
+  const Eigen::Matrix3d Tc = element_frame(x0, x1, x2);
+  const Eigen::Matrix3d Tr = element_frame(p.X[0], p.X[1], p.X[2]);
+  // In-plane map of the parent, current -> rest, in its two local frames.
+  Eigen::Matrix2d a, A;
+  a.col(0) = (Tc.transpose() * (x1 - x0)).head<2>();
+  a.col(1) = (Tc.transpose() * (x2 - x0)).head<2>();
+  A.col(0) = (Tr.transpose() * (p.X[1] - p.X[0])).head<2>();
+  A.col(1) = (Tr.transpose() * (p.X[2] - p.X[0])).head<2>();
+  Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+  G.topLeftCorner<2, 2>() = A * a.inverse();
+  // The new triangle, turned into the parent's plane, in the parent's current frame.
+  const Vec3 y0 = g.new_state.x[new_face[0]], y1 = g.new_state.x[new_face[1]],
+             y2 = g.new_state.x[new_face[2]];
+  const Eigen::Matrix3d Te = element_frame(y0, y1, y2);
+  const Eigen::Matrix3d R =
+      Eigen::Quaterniond::FromTwoVectors(Te.col(2), Tc.col(2)).toRotationMatrix();
+  const Eigen::Matrix3d M = Tc.transpose() * R;  // world (new face) -> parent-current coordinates
+  ElementRest e;
+  e.X[0] = Vec3::Zero();
+  e.X[1] = G * (M * (y1 - y0));
+  e.X[2] = G * (M * (y2 - y0));
+  const Eigen::Matrix3d U = element_frame(e.X[0], e.X[1], e.X[2]);
+  // Triad deviation of the parent at each corner, rest-frame <- current-frame.
+  std::vector<Quat> dev(3);
+  for (int j = 0; j < 3; ++j)
+    dev[j] = (p.Q[j] * Quat(Eigen::Matrix3d(Tc.transpose() * g.old_state.D[pf[j]].toRotationMatrix()))
+                           .conjugate())
+                 .normalized();
+  std::vector<double> w(3);
+  for (int k = 0; k < 3; ++k) {
+    double sum = 0.0;
+    for (int j = 0; j < 3; ++j) sum += (w[j] = std::max(0.0, o.bary(k, j)));
+    if (!(sum > 0.0)) w = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+    else
+      for (double& wj : w) wj /= sum;
+    const Quat d = mean_rotation(dev, w);
+    const Eigen::Matrix3d q =
+        U.transpose() * d.toRotationMatrix() * M * g.new_state.D[new_face[k]].toRotationMatrix();
+    e.Q[k] = Quat(q).normalized();
+  }
+  return e;
+}
+
+}  // namespace
+
+RestState carry_rest(const EditMaps& maps, const RestState& old, const EditGeometry* geometry) {
   RestState r;
   r.elements.resize(maps.faces.size());
   std::vector<Quat> q(3);
@@ -72,6 +126,12 @@ RestState carry_rest(const EditMaps& maps, const RestState& old) {
   for (std::size_t f = 0; f < maps.faces.size(); ++f) {
     const FaceOrigin& o = maps.faces[f];
     const ElementRest& p = old.elements[o.parent.index()];
+    if (o.kind == FaceOriginKind::Resampled) {
+      if (geometry == nullptr)
+        throw InvalidArgument("carry_rest: a resampled face needs the edit's geometry");
+      r.elements[f] = resampled_rest(o, p, geometry->new_faces[f], *geometry);
+      continue;
+    }
     if (o.bary == Eigen::Matrix3d::Identity()) {
       r.elements[f] = p;
       continue;

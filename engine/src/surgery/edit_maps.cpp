@@ -43,6 +43,7 @@ EditMaps compose(const EditMaps& first, const EditMaps& second) {
     const FaceOrigin& o1 = first.faces[o2.parent.index()];
     out.faces[f].parent = o1.parent;
     out.faces[f].bary = o2.bary * o1.bary;
+    out.faces[f].kind = std::max(o1.kind, o2.kind);
   }
   return out;
 }

@@ -101,6 +101,62 @@ std::vector<FaceId> left_wedge(const SurfaceMesh& mesh, const std::vector<Vertex
   return wedge;
 }
 
+// Remeshes the band around the traced cut `c` of `refined` (an edit of `mesh` by `maps`), the
+// cut kept as a constrained polyline; updates all three to the remeshed mesh.
+void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
+                 const IncisionParams& params, SurfaceMesh& refined, EditMaps& maps,
+                 std::vector<VertexId>& c, IncisionResult& result) {
+  const double L = params.target_edge_length > 0.0 ? params.target_edge_length
+                                                   : mean_edge_length(mesh, host_faces);
+  std::vector<Vec3> trace;
+  for (const VertexId v : c) trace.push_back(refined.position(v));
+  RemeshParams rp;
+  rp.target_edge_length = L;
+  rp.region = faces_near_polyline(refined, trace, params.band_width * L);
+  rp.grading = params.grading;
+  if (params.grading > 1.0) rp.grading_curve = trace;
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) rp.constrained_edges.emplace_back(c[i], c[i + 1]);
+  if (!params.constrained_vertices.empty()) {
+    rp.constrained_vertices.assign(refined.num_vertices(), false);
+    for (std::size_t v = 0; v < refined.num_vertices(); ++v) {
+      const VertexOrigin& o = maps.vertices[v];
+      if (o.parents.size() == 1 && o.parents[0].index() < params.constrained_vertices.size())
+        rp.constrained_vertices[v] = params.constrained_vertices[o.parents[0].index()];
+    }
+  }
+  RemeshResult r = remesh(refined, rp);
+  // The cut again, as the chain of constrained edges from the (kept) first vertex to the last.
+  std::vector<VertexId> image(refined.num_vertices());
+  for (std::size_t v = 0; v < r.maps.vertices.size(); ++v) {
+    const VertexOrigin& o = r.maps.vertices[v];
+    if (o.kind == VertexOriginKind::Copy) image[o.parents[0].index()] = VertexId(v);
+  }
+  const VertexId first = image[c.front().index()], last = image[c.back().index()];
+  if (!first.valid() || !last.valid())
+    throw Error("incise: internal error: the remesh moved an end of the cut");
+  std::vector<std::vector<VertexId>> along(r.mesh.num_vertices());
+  for (const auto& [a, b] : r.constrained_edges) {
+    along[a.index()].push_back(b);
+    along[b.index()].push_back(a);
+  }
+  std::vector<VertexId> chain{first};
+  while (chain.back() != last) {
+    const VertexId at = chain.back();
+    VertexId next;
+    for (const VertexId w : along[at.index()])
+      if (chain.size() < 2 || w != chain[chain.size() - 2]) next = w;
+    if (!next.valid() || along[at.index()].size() > 2 || chain.size() > r.mesh.num_vertices())
+      throw Error("incise: internal error: the remeshed cut is not one polyline");
+    chain.push_back(next);
+  }
+  maps = compose(maps, r.maps);
+  refined = std::move(r.mesh);
+  c = std::move(chain);
+  result.remeshed = true;
+  result.band_before = r.before;
+  result.band_after = r.after;
+}
+
 }  // namespace
 
 IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
@@ -111,6 +167,11 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   if (!(params.sliver_fraction > 0.0 && params.sliver_fraction < 0.5))
     throw InvalidArgument("sliver_fraction must be in (0, 0.5)");
   if (!(params.max_distance > 0.0)) throw InvalidArgument("max_distance must be > 0");
+  if (!(params.target_edge_length >= 0.0)) throw InvalidArgument("target_edge_length must be >= 0");
+  if (!(params.band_width > 0.0 && params.band_width <= 20.0))
+    throw InvalidArgument("band_width must be in (0, 20] target edge lengths");
+  if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
+    throw InvalidArgument("constrained_vertices: one flag per vertex");
 
   std::vector<SurfacePoint> sp;
   std::vector<PathEvent> pe;
@@ -175,10 +236,10 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   }
 
   EditMaps refine_maps;
-  const SurfaceMesh refined = std::move(soup).build(refine_maps);
+  SurfaceMesh refined = std::move(soup).build(refine_maps);
   std::vector<VertexId> c;
   for (const int v : path) c.emplace_back(v);
-  const std::size_t m = c.size() - 1;
+  std::size_t m = c.size() - 1;
   for (std::size_t i = 0; i < m; ++i)
     if (!detail::find_halfedge(refined, c[i], c[i + 1]).valid() ||
         !detail::find_halfedge(refined, c[i + 1], c[i]).valid())
@@ -189,6 +250,13 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
       throw InvalidArgument("the incision touches the open boundary at " +
                             detail::point_text(refined.position(c[i])) +
                             " between its ends; end it there or keep it away from the boundary");
+
+  if (params.mode == IncisionMode::CutThroughFaces && params.remesh) {
+    std::vector<FaceId> host;
+    for (const SurfacePoint& p : sp) host.push_back(p.face);
+    remesh_band(mesh, host, params, refined, refine_maps, c, result);
+    m = c.size() - 1;
+  }
 
   // Duplicate path vertices: interior path vertices always, ends only on the boundary (an
   // interior end stays shared by both lips: the end of a slit).

@@ -1,5 +1,5 @@
 #pragma once
-// Shared helpers for the surgery tests: a body (mesh + state + rest) carried across edits, and
+// Shared helpers for the surgery tests: a body (mesh + attributes) carried across edits, and
 // a shell system over it.
 #include <memory>
 
@@ -9,27 +9,18 @@
 #include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/sim/shell_system.hpp"
 #include "sutura/engine/surgery/carry.hpp"
+#include "sutura/engine/surgery/surface_attributes.hpp"
 
 namespace sutura::engine::testing {
 
-struct Body {
+// Engine attributes with their mesh; edits go through the engine's apply_edit, the same path
+// as the app's.
+struct Body : SurfaceAttributes {
   SurfaceMesh mesh;
-  ShellState state;
-  RestState rest;
-  std::vector<int> face_material;
-  Constraints constraints;
 
-  explicit Body(SurfaceMesh m) : mesh(std::move(m)) {
-    state = state_from_mesh(mesh);
-    rest = rest_from_state(mesh, state);
-    face_material.assign(mesh.num_faces(), 0);
-  }
+  explicit Body(SurfaceMesh m) : SurfaceAttributes(attributes_at_rest(m)), mesh(std::move(m)) {}
   void apply(const SurfaceMesh& new_mesh, const EditMaps& maps) {
-    state = carry_state(maps, state);
-    rest = carry_rest(maps, rest);
-    face_material = carry_face_values(maps, face_material);
-    constraints = carry_constraints(maps, constraints);
-    mesh = new_mesh;
+    apply_edit(mesh, *this, new_mesh, maps);
   }
 };
 

@@ -32,8 +32,11 @@
 
 namespace sutura::app {
 
-/// The newest session format version this build reads and writes.
-inline constexpr int kSessionFormatVersion = 1;
+/// The newest session format version this build reads and writes. A session keeps its meaning
+/// across versions: a default that changes is keyed by the version of the session's header
+/// (docs/session-format.md lists them). 2: `incise` remeshes the band around a cut-through
+/// incision unless "remesh": false.
+inline constexpr int kSessionFormatVersion = 2;
 
 /// A session that cannot be read or run. `what()` reads "FILE:LINE: op 'OP': field 'F': problem"
 /// with the parts that are known.
@@ -308,8 +311,10 @@ Session load_session(const std::filesystem::path& file);
 Session parse_session(const std::string& text, const std::filesystem::path& file);
 
 /// Parses and checks one action line (already decoded JSON) as if it were line `line` of
-/// `file`: the GUI records each action with it before running it. Throws SessionError.
-Action parse_action(const nlohmann::json& line_json, const std::filesystem::path& file, int line);
+/// `file`: the GUI records each action with it before running it. `version`: the format version
+/// of the session the line belongs to (it decides defaults that changed). Throws SessionError.
+Action parse_action(const nlohmann::json& line_json, const std::filesystem::path& file, int line,
+                    int version = kSessionFormatVersion);
 
 /// Names of every op this build understands (for messages and docs tests).
 const std::vector<std::string>& known_ops();

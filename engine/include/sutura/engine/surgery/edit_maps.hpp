@@ -26,13 +26,24 @@ struct VertexOrigin {
   std::vector<double> weights;    ///< same size, sum 1; new position = sum w_i x_i
 };
 
-/// A new face lies inside one old face: row k of `bary` holds the barycentric coordinates of
-/// new corner k with respect to the parent's corners (identity for an untouched face). With
-/// per-element rest geometry this gives the new element's rest corners exactly: the map from
-/// a face's current to its rest triangle is affine.
+/// How a new face relates to the old mesh. Decides how its rest shape is carried (carry.hpp).
+enum class FaceOriginKind {
+  /// Inside its parent (a sub-face of a split, or the parent itself): rest corners by the
+  /// barycentrics, exact since a triangle's current-to-rest map is affine.
+  Subface,
+  /// Made by a remesh: its corners lie on the old surface, possibly in several old faces.
+  /// `parent` is the old face under its centroid and `bary` the corners' barycentrics in the
+  /// parent's plane (they may leave [0, 1]); its rest shape comes from its own current shape
+  /// pulled back through the parent's strain (carry.hpp, docs/remeshing.md).
+  Resampled,
+};
+
+/// Row k of `bary` holds the barycentric coordinates of new corner k with respect to the
+/// parent's corners (identity for an untouched face).
 struct FaceOrigin {
   FaceId parent;
   Eigen::Matrix3d bary = Eigen::Matrix3d::Identity();
+  FaceOriginKind kind = FaceOriginKind::Subface;
 };
 
 struct EditMaps {
@@ -45,7 +56,7 @@ struct EditMaps {
 
 /// Maps of `second` applied after `first` (second's parents index first's new mesh).
 /// Merges that meet interpolation are expanded linearly; the kind is the "strongest" of the
-/// two (Merged > Interpolated > Copy). Cost O(V + F).
+/// two (Merged > Interpolated > Copy; Resampled > Subface). Cost O(V + F).
 EditMaps compose(const EditMaps& first, const EditMaps& second);
 
 }  // namespace sutura::engine

@@ -4,6 +4,7 @@
 
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/edit_maps.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::engine {
 
@@ -28,6 +29,20 @@ struct IncisionParams {
   double sliver_fraction = 0.2;
   /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
   double max_distance = 1.0;
+  /// Cut-through only: remesh a band around the traced cut before opening it (remesh.hpp), the
+  /// cut's edges kept as a constrained polyline, so the lips get well-shaped triangles while
+  /// their vertices stay on the trace. Off: the raw trace (the sliver guard alone).
+  bool remesh = true;
+  /// mm, >= 0: edge length of the band; 0 = the mean edge length of the faces the curve's
+  /// points lie in (the host's spacing).
+  double target_edge_length = 0.0;
+  /// > 0: half-width of the band, in target edge lengths.
+  double band_width = 2.0;
+  /// >= 1: edge growth per band away from the cut (1 = uniform; see RemeshParams::grading).
+  double grading = 1.0;
+  /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
+  /// are (fixed DOFs, point loads, probes).
+  std::vector<bool> constrained_vertices;
 };
 
 struct IncisionResult {
@@ -44,6 +59,8 @@ struct IncisionResult {
   int inserted_vertices = 0;  ///< vertices created where the curve crosses edges or faces
   int snapped_points = 0;     ///< curve crossings moved to an existing vertex by the sliver guard
   double length = 0.0;        ///< mm, along the cut
+  bool remeshed = false;      ///< the band around the cut was remeshed
+  MeshQuality band_before, band_after;  ///< of the band, when remeshed
 };
 
 /// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the

@@ -1,0 +1,79 @@
+#pragma once
+// Constrained local remeshing: any region of a surface is remeshed to a target edge length
+// (CGAL's isotropic remeshing: split, collapse, flip, tangential relaxation, projection onto
+// the old surface), finer near a polyline when asked (graded, by nested bands), keeping
+// constrained edges as polylines (lips, seams, open boundaries) and constrained vertices where
+// they are. The result is an edit like any other: a new mesh and EditMaps, so every attribute
+// follows it (surface_attributes.hpp). New vertices lie on the old surface and are located in
+// an old face (Interpolated, barycentric weights); a new face that is not an old one keeps the
+// old face under its centroid as parent (FaceOriginKind::Resampled) and takes its rest shape by
+// the strain transfer of carry.hpp (docs/remeshing.md gives the rule and its error).
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "sutura/engine/mesh.hpp"
+#include "sutura/engine/surgery/edit_maps.hpp"
+
+namespace sutura::engine {
+
+/// Angles and edge lengths of a set of faces.
+struct MeshQuality {
+  double min_angle_deg = 0.0;  ///< smallest interior angle of any face
+  double p5_angle_deg = 0.0;   ///< 5th percentile of the faces' smallest angles
+  double min_edge = 0.0;       ///< mm
+  double max_edge = 0.0;       ///< mm
+  std::size_t faces = 0;
+};
+
+/// Quality of `faces` of `mesh` (all faces when empty). Cost O(F log F).
+MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
+
+/// Mean edge length of `faces` (all faces when empty), mm. Cost O(F).
+double mean_edge_length(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
+
+/// Faces with a corner within `radius` (mm) of the polyline through `points` (one point: of the
+/// point), sorted. Cost O(F * points).
+std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                                        double radius);
+
+struct RemeshParams {
+  /// mm, > 0: edge length at the finest (near `grading_curve`, or everywhere without one).
+  double target_edge_length = 0.0;
+  /// Faces to remesh (any order); none given = the whole surface, an empty list is an error.
+  std::optional<std::vector<FaceId>> region;
+  /// >= 1: with a curve, the edge length grows by this factor per band of the current
+  /// length away from the curve, up to the region's own mean edge length (nested bands, the
+  /// outer ones remeshed first). 1 = uniform.
+  double grading = 1.0;
+  /// Polyline (mm) near which the mesh is finest; empty = uniform.
+  std::vector<Vec3> grading_curve;
+  int iterations = 3;  ///< >= 1, CGAL iterations per band
+  /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
+  /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
+  std::vector<std::pair<VertexId, VertexId>> constrained_edges;
+  /// Per vertex (empty or mesh-sized): never moved nor removed (fixed DOFs, loads, probes,
+  /// ends of constrained polylines).
+  std::vector<bool> constrained_vertices;
+};
+
+struct RemeshResult {
+  SurfaceMesh mesh;
+  EditMaps maps;  ///< from the mesh passed in
+  MeshQuality before, after;  ///< of the region (before) and of the faces it became (after)
+  std::vector<FaceId> region;  ///< faces of the new mesh that were remeshed
+  /// The constrained edges of the new mesh (sub-edges of the given ones), as vertex pairs.
+  std::vector<std::pair<VertexId, VertexId>> constrained_edges;
+};
+
+/// Remeshes `params.region` of `mesh`. Deterministic (CGAL's remesher draws no random numbers
+/// and visits elements in index order; nothing here depends on the thread count).
+/// Throws InvalidArgument naming the field for: target_edge_length <= 0 or non-finite or
+/// larger than the region's extent ("target_edge_length"), a region face out of range or a
+/// region without faces ("region"), grading < 1 ("grading"), iterations < 1 or > 100
+/// ("iterations"), a constrained edge that is not an edge ("constrained_edges"), a
+/// constrained-vertex list of the wrong size ("constrained_vertices"). The mesh passed in is
+/// never changed. Cost: O(F_region * iterations * log F) per band.
+RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params);
+
+}  // namespace sutura::engine

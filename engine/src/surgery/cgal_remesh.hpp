@@ -1,0 +1,54 @@
+#pragma once
+// CGAL's isotropic remeshing of face ranges of one mesh, band after band, with constrained
+// polylines and vertices (the only CGAL translation unit of the surgery code). Plain arrays in
+// and out; remesh.cpp turns the result into an edit with EditMaps.
+#include <utility>
+#include <vector>
+
+#include "sutura/engine/mesh.hpp"
+
+namespace sutura::engine::detail {
+
+struct RemeshBand {
+  double target_edge_length = 0.0;  ///< mm
+  /// Faces whose centroid lies within this distance (mm) of the band curve are remeshed;
+  /// negative: every face of the region.
+  double reach = -1.0;
+};
+
+struct CgalRemeshInput {
+  const std::vector<Vec3>* positions = nullptr;
+  const std::vector<FaceIndices>* faces = nullptr;
+  std::vector<bool> region;  ///< per face: may be remeshed
+  std::vector<Vec3> band_curve;  ///< polyline the band reaches are measured from
+  std::vector<RemeshBand> bands;  ///< remeshed in this order (coarsest first)
+  int iterations = 3;
+  std::vector<std::pair<int, int>> constrained_edges;  ///< kept as polylines
+  std::vector<bool> constrained_vertices;              ///< per vertex: never moved nor removed
+};
+
+/// Where an output point lies on the input surface.
+struct SurfaceLocation {
+  int face = -1;                              ///< input face
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  ///< in that face, clamped to it
+};
+
+struct CgalRemeshOutput {
+  std::vector<Vec3> positions;
+  std::vector<FaceIndices> faces;
+  std::vector<int> old_vertex;  ///< per output vertex: its input vertex, or -1 when new
+  std::vector<bool> moved;      ///< per output vertex: position differs from its input vertex's
+  std::vector<SurfaceLocation> vertex_location;  ///< per output vertex that is new or moved
+  std::vector<int> old_face;  ///< per output face: the input face it is (same corners), or -1
+  std::vector<SurfaceLocation> face_location;  ///< per output face that is not an input face:
+                                               ///< where its centroid lies
+  std::vector<bool> region;  ///< per output face: inside a remeshed band
+  std::vector<std::pair<int, int>> constrained_edges;
+};
+
+/// Remeshes band after band. Interior vertices are projected onto the input surface, vertices
+/// on constrained polylines (and open boundaries) onto the input polylines, so lips and
+/// boundaries keep their exact trace. Deterministic.
+CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in);
+
+}  // namespace sutura::engine::detail

@@ -1,0 +1,244 @@
+#include "sutura/engine/surgery/remesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "cgal_remesh.hpp"
+#include "mesh_walk.hpp"
+#include "sutura/engine/errors.hpp"
+
+namespace sutura::engine {
+
+namespace {
+
+double angle_deg(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
+}
+
+std::vector<FaceId> all_faces(const SurfaceMesh& mesh) {
+  std::vector<FaceId> f(mesh.num_faces());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = FaceId(i);
+  return f;
+}
+
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+// Barycentric coordinates of p's projection onto the plane of (a, b, c), not clamped.
+Eigen::Vector3d plane_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a, d = p - a;
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+  const double r1 = d.dot(e1), r2 = d.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  const double u = (d22 * r1 - d12 * r2) / det, v = (d11 * r2 - d12 * r1) / det;
+  return {1.0 - u - v, u, v};
+}
+
+}  // namespace
+
+MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
+  const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
+  MeshQuality q;
+  q.faces = set.size();
+  if (set.empty()) return q;
+  std::vector<double> smallest;
+  smallest.reserve(set.size());
+  q.min_edge = std::numeric_limits<double>::infinity();
+  for (const FaceId f : set) {
+    const auto v = mesh.face_vertices(f);
+    const Vec3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
+    double m = 180.0;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+      m = std::min(m, angle_deg(a, b));
+      q.min_edge = std::min(q.min_edge, a.norm());
+      q.max_edge = std::max(q.max_edge, a.norm());
+    }
+    smallest.push_back(m);
+  }
+  std::sort(smallest.begin(), smallest.end());
+  q.min_angle_deg = smallest.front();
+  q.p5_angle_deg = smallest[static_cast<std::size_t>(0.05 * double(smallest.size() - 1))];
+  return q;
+}
+
+double mean_edge_length(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
+  const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
+  double sum = 0.0;
+  for (const FaceId f : set) {
+    const auto v = mesh.face_vertices(f);
+    for (int k = 0; k < 3; ++k) sum += (mesh.position(v[(k + 1) % 3]) - mesh.position(v[k])).norm();
+  }
+  return set.empty() ? 0.0 : sum / (3.0 * double(set.size()));
+}
+
+std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                                        double radius) {
+  std::vector<FaceId> out;
+  if (points.empty()) return out;
+  std::vector<bool> near(mesh.num_vertices(), false);
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3& p = mesh.position(VertexId(v));
+    if (points.size() == 1) {
+      near[v] = (p - points[0]).norm() <= radius;
+      continue;
+    }
+    for (std::size_t i = 0; i + 1 < points.size() && !near[v]; ++i)
+      near[v] = segment_distance(p, points[i], points[i + 1]) <= radius;
+  }
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    const auto fv = mesh.face_vertices(FaceId(f));
+    if (near[fv[0].index()] || near[fv[1].index()] || near[fv[2].index()]) out.emplace_back(f);
+  }
+  return out;
+}
+
+RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
+  const std::size_t nv = mesh.num_vertices(), nf = mesh.num_faces();
+  std::vector<bool> region(nf, !params.region.has_value());
+  for (const FaceId f : params.region.value_or(std::vector<FaceId>{})) {
+    if (!f.valid() || f.index() >= nf)
+      throw InvalidArgument("region: face " + std::to_string(f.value) + " is not a face of the mesh (" +
+                            std::to_string(nf) + " faces)");
+    region[f.index()] = true;
+  }
+  std::vector<FaceId> region_faces;
+  for (std::size_t f = 0; f < nf; ++f)
+    if (region[f]) region_faces.emplace_back(f);
+  if (region_faces.empty()) throw InvalidArgument("region: no faces to remesh");
+  const double L = params.target_edge_length;
+  if (!(std::isfinite(L) && L > 0.0))
+    throw InvalidArgument("target_edge_length must be a finite length > 0 mm, got " +
+                          std::to_string(L));
+  {
+    Eigen::AlignedBox3d box;
+    for (const FaceId f : region_faces)
+      for (const VertexId v : mesh.face_vertices(f)) box.extend(mesh.position(v));
+    const double extent = box.diagonal().norm();
+    if (L > extent)
+      throw InvalidArgument("target_edge_length " + std::to_string(L) +
+                            " mm is larger than the region (" + std::to_string(extent) +
+                            " mm across)");
+    // Bound the work by the input: a target far below the region's spacing would make
+    // (extent / L)^2 faces.
+    const double host = mean_edge_length(mesh, region_faces);
+    const double growth = (host / L) * (host / L) * double(region_faces.size());
+    if (growth > 2.0e6)
+      throw InvalidArgument("target_edge_length " + std::to_string(L) +
+                            " mm would make about " + std::to_string(static_cast<long long>(growth)) +
+                            " faces from " + std::to_string(region_faces.size()) +
+                            " (limit 2000000)");
+  }
+  if (!(std::isfinite(params.grading) && params.grading >= 1.0 && params.grading <= 10.0))
+    throw InvalidArgument("grading must be in [1, 10], got " + std::to_string(params.grading));
+  if (params.iterations < 1 || params.iterations > 100)
+    throw InvalidArgument("iterations must be in [1, 100], got " +
+                          std::to_string(params.iterations));
+  if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != nv)
+    throw InvalidArgument("constrained_vertices: " + std::to_string(params.constrained_vertices.size()) +
+                          " flags for " + std::to_string(nv) + " vertices");
+
+  detail::CgalRemeshInput in;
+  in.positions = &mesh.positions();
+  in.faces = &mesh.faces();
+  in.region = region;
+  in.iterations = params.iterations;
+  in.constrained_vertices = params.constrained_vertices;
+  in.constrained_vertices.resize(nv, false);
+  // Ends and junctions of constrained polylines stay put: a vertex with other than two
+  // constrained edges (open boundary edges count).
+  std::vector<int> degree(nv, 0);
+  for (const auto& [a, b] : params.constrained_edges) {
+    if (!a.valid() || !b.valid() || a.index() >= nv || b.index() >= nv ||
+        (!detail::find_halfedge(mesh, a, b).valid() && !detail::find_halfedge(mesh, b, a).valid()))
+      throw InvalidArgument("constrained_edges: " + std::to_string(a.value) + "-" +
+                            std::to_string(b.value) + " is not an edge of the mesh");
+    in.constrained_edges.emplace_back(a.value, b.value);
+    ++degree[a.index()];
+    ++degree[b.index()];
+  }
+  for (std::size_t h = 0; h < 3 * nf; ++h)
+    if (!mesh.twin(HalfedgeId(h)).valid()) {
+      const auto fv = mesh.face_vertices(SurfaceMesh::face(HalfedgeId(h)));
+      const int k = static_cast<int>(h % 3);
+      ++degree[fv[k].index()];
+      ++degree[fv[(k + 1) % 3].index()];
+    }
+  for (std::size_t v = 0; v < nv; ++v)
+    if (degree[v] != 0 && degree[v] != 2) in.constrained_vertices[v] = true;
+
+  // Bands: coarsest first. Band i has edge length L g^i and reaches 2 L g^i beyond band i-1.
+  const double host = mean_edge_length(mesh, region_faces);
+  if (params.grading > 1.0 && !params.grading_curve.empty() && host > L) {
+    std::vector<detail::RemeshBand> bands;
+    double length = L, reach = 0.0;
+    while (length < host && bands.size() < 32) {
+      reach += 2.0 * length;
+      bands.push_back({length, reach});
+      length *= params.grading;
+    }
+    in.bands.assign(bands.rbegin(), bands.rend());
+    in.band_curve = params.grading_curve;
+  } else {
+    in.bands.push_back({L, -1.0});
+  }
+
+  const detail::CgalRemeshOutput out = detail::cgal_remesh(in);
+
+  RemeshResult r;
+  r.before = mesh_quality(mesh, region_faces);
+  const std::size_t nv2 = out.positions.size();
+  r.maps.vertices.resize(nv2);
+  std::vector<Vec3> x(nv2);
+  for (std::size_t v = 0; v < nv2; ++v) {
+    VertexOrigin& o = r.maps.vertices[v];
+    if (!out.moved[v]) {
+      o = VertexOrigin{VertexOriginKind::Copy, {VertexId(out.old_vertex[v])}, {1.0}};
+      x[v] = mesh.position(VertexId(out.old_vertex[v]));
+      continue;
+    }
+    const detail::SurfaceLocation& loc = out.vertex_location[v];
+    const auto fv = mesh.face_vertices(FaceId(loc.face));
+    o.kind = VertexOriginKind::Interpolated;
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k)
+      if (loc.bary[k] > 1e-12) sum += loc.bary[k];
+    x[v] = Vec3::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (loc.bary[k] > 1e-12) {
+        o.parents.push_back(fv[k]);
+        o.weights.push_back(loc.bary[k] / sum);
+        x[v] += o.weights.back() * mesh.position(fv[k]);
+      }
+    if (o.parents.size() == 1) o.kind = VertexOriginKind::Copy;  // landed on an old vertex
+  }
+  r.maps.faces.resize(out.faces.size());
+  for (std::size_t f = 0; f < out.faces.size(); ++f) {
+    FaceOrigin& o = r.maps.faces[f];
+    if (out.old_face[f] >= 0) {
+      o.parent = FaceId(out.old_face[f]);
+      continue;
+    }
+    o.parent = FaceId(out.face_location[f].face);
+    o.kind = FaceOriginKind::Resampled;
+    const auto pv = mesh.face_vertices(o.parent);
+    for (int k = 0; k < 3; ++k)
+      o.bary.row(k) = plane_barycentric(x[out.faces[f][k]], mesh.position(pv[0]),
+                                        mesh.position(pv[1]), mesh.position(pv[2]))
+                          .transpose();
+  }
+  r.mesh = SurfaceMesh(std::move(x), out.faces);
+  for (std::size_t f = 0; f < out.faces.size(); ++f)
+    if (out.region[f]) r.region.emplace_back(f);
+  r.after = mesh_quality(r.mesh, r.region);
+  for (const auto& [a, b] : out.constrained_edges) r.constrained_edges.emplace_back(VertexId(a), VertexId(b));
+  return r;
+}
+
+}  // namespace sutura::engine
