@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "replay_run.hpp"
+#include "sutura/app/report.hpp"
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
@@ -29,13 +30,36 @@ std::vector<bool> kept_vertices(const SceneObject& obj) {
   return keep;
 }
 
-json quality_json(const engine::MeshQuality& q) {
-  return {{"faces", q.faces},
-          {"min_angle_deg", q.min_angle_deg},
-          {"p5_angle_deg", q.p5_angle_deg},
-          {"min_edge_mm", q.min_edge},
-          {"max_edge_mm", q.max_edge}};
+// Edges a remesh must keep as polylines: earlier sutures and material borders (a patch's rim).
+std::vector<std::pair<engine::VertexId, engine::VertexId>> feature_edges(const SceneObject& obj) {
+  auto edges = engine::chain_edges(obj.mesh, obj.sim.marks.sutures);
+  const auto borders = engine::value_border_edges(obj.mesh, obj.sim.face_material);
+  edges.insert(edges.end(), borders.begin(), borders.end());
+  return edges;
 }
+
+// After a suture: the band of two edge lengths around `seams` is remeshed (the seams, earlier
+// sutures, material borders and kept vertices constrained), so the faces the pairing left
+// beside the seam are well shaped. Faces of material `keep_material` (a patch: laid out far
+// from its rest shape, its strain varies too fast across the band to be resampled) are left
+// as they are. Returns the band's quality before and after.
+json remesh_around(SceneObject& obj, const std::vector<std::vector<engine::VertexId>>& seams,
+                   int keep_material = -1) {
+  engine::RemeshParams p = engine::band_around(obj.mesh, seams, 2.0);
+  if (keep_material >= 0)
+    std::erase_if(*p.region, [&](engine::FaceId f) {
+      return obj.sim.face_material[f.index()] == keep_material;
+    });
+  const auto features = feature_edges(obj);
+  p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
+  p.constrained_vertices = kept_vertices(obj);
+  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  return {{"target_edge_length_mm", p.target_edge_length},
+          {"before", mesh_quality_json(r.before)},
+          {"after", mesh_quality_json(r.after)}};
+}
+
 
 // Keep memory bounded on long GUI sessions: each entry is a copy of every object.
 constexpr std::size_t kMaxUndo = 64;
@@ -121,7 +145,10 @@ json Run::execute(const InciseOp& op) {
   remember();
   SceneObject& obj = object(op.object);
   engine::IncisionParams params = op.params;
-  if (params.remesh) params.constrained_vertices = kept_vertices(obj);
+  if (params.remesh) {
+    params.constrained_vertices = kept_vertices(obj);
+    params.constrained_edges = feature_edges(obj);
+  }
   const engine::IncisionResult r = engine::incise(obj.mesh, op.points, params);
   engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
   obj.sim.marks.incisions.push_back(r.left);
@@ -134,7 +161,7 @@ json Run::execute(const InciseOp& op) {
             {"snapped_points", r.snapped_points},
             {"starts_on_boundary", r.starts_on_boundary},
             {"ends_on_boundary", r.ends_on_boundary}};
-  if (r.remeshed) j["remesh"] = {{"before", quality_json(r.band_before)}, {"after", quality_json(r.band_after)}};
+  if (r.remeshed) j["remesh"] = {{"before", mesh_quality_json(r.band_before)}, {"after", mesh_quality_json(r.band_after)}};
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -180,6 +207,7 @@ json Run::execute(const JoinOp& op) {
             {"sutures", sutures},
             {"merged_vertices", r.merged.size()},
             {"displaced_vertices", r.displaced.size()}};
+  if (op.remesh) j["remesh"] = remesh_around(obj, r.seams);
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -212,6 +240,8 @@ json Run::execute(const PatchOp& op) {
             {"patch_faces", plan.rest.num_faces()},
             {"patch_area_mm2", plan.rest.total_area()},
             {"sutures", sutures}};
+  if (op.remesh)
+    j["remesh"] = remesh_around(obj, r.seams, static_cast<int>(obj.sim.materials.size()) - 1);
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -251,6 +281,7 @@ json Run::execute(const ResectOp& op) {
     engine::start_relaxation(obj.mesh, obj.sim, r.merged, {});
     for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
     j["anastomosis"] = suture_report(r.sutures[0]);
+    if (op.remesh) j["remesh"] = remesh_around(obj, r.seams);
   }
   j["mesh"] = mesh_counts(obj);
   return j;

@@ -24,6 +24,14 @@ std::string position_hash(const engine::SurfaceMesh& mesh) {
   return buf;
 }
 
+nlohmann::json mesh_quality_json(const engine::MeshQuality& q) {
+  return {{"faces", q.faces},
+          {"min_angle_deg", q.min_angle_deg},
+          {"p5_angle_deg", q.p5_angle_deg},
+          {"min_edge_mm", q.min_edge},
+          {"max_edge_mm", q.max_edge}};
+}
+
 nlohmann::json object_summary(const SceneObject& object) {
   const auto& m = object.mesh;
   const auto box = m.bounds();
@@ -38,6 +46,7 @@ nlohmann::json object_summary(const SceneObject& object) {
       {"bounds_min", {box.min().x(), box.min().y(), box.min().z()}},
       {"bounds_max", {box.max().x(), box.max().y(), box.max().z()}},
       {"position_hash", position_hash(m)},
+      {"quality", mesh_quality_json(engine::mesh_quality(m))},
   };
 }
 

@@ -93,6 +93,7 @@ JoinOp parse_join(Fields& f) {
       s.finish();
     }
   }
+  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
   return op;
 }
 
@@ -121,6 +122,7 @@ PatchOp parse_patch(Fields& f) {
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
   op.material = default_patch_material();
   if (auto m = f.optional_object("material")) op.material = parse_material_object(*m, op.material);
+  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
   return op;
 }
 
@@ -145,6 +147,9 @@ ResectOp parse_resect(Fields& f) {
   if (op.anastomosis && op.planes.size() != 2)
     f.fail("anastomosis", "needs two planes (two loose ends to suture)");
   if (auto a = f.optional_vec3("align")) op.align = vec(*a);
+  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
+  if (op.remesh && !op.anastomosis && f.has("remesh"))
+    f.fail("remesh", "remeshes the band around an anastomosis: needs \"anastomosis\": true");
   return op;
 }
 

@@ -43,7 +43,8 @@ json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, 
   json chains = json::array();
   for (const auto* c : {&a, &b})
     chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
-  json op = {{"op", "join"}, {"object", object}, {"chains", chains}};
+  // "remesh" is recorded, so a session the GUI continues replays the same whatever its version.
+  json op = {{"op", "join"}, {"object", object}, {"chains", chains}, {"remesh", true}};
   if (onto_b) op["placement"] = "onto_b";
   return op;
 }
@@ -51,7 +52,8 @@ json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, 
 json patch_op(const std::string& object, const std::string& shape, const engine::Vec3& lip_start,
               const engine::Vec3& lip_end, double width, const json& material) {
   return {{"op", "patch"}, {"object", object}, {"shape", shape}, {"start", point_json(lip_start)},
-          {"end", point_json(lip_end)}, {"width", width}, {"material", material}};
+          {"end", point_json(lip_end)}, {"width", width}, {"material", material},
+          {"remesh", true}};
 }
 
 json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {

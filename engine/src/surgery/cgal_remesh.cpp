@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <memory>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_segment_primitive.h>
@@ -48,6 +49,153 @@ double distance_to_polyline(const Vec3& p, const std::vector<Vec3>& curve) {
   return best;
 }
 
+double angle_at(const Point& a, const Point& b, const Point& c) {  // at a, in (b, a, c)
+  const Vec3 u = to_vec(b) - to_vec(a), w = to_vec(c) - to_vec(a);
+  return std::atan2(u.cross(w).norm(), u.dot(w));
+}
+
+// Finishes the band the way CGAL's valence-driven flips do not: an edge inside the band whose
+// two opposite angles add up to more than pi is flipped (the Delaunay criterion, which
+// maximises the smallest angle of a planar pair), where the pair is nearly flat (within 20
+// degrees, so the surface keeps its shape) and the flip makes no duplicate edge. Constrained
+// edges are never flipped. Deterministic: sweeps in edge index order, at most 20 sweeps.
+template <class EdgeMap, class FaceMap>
+void delaunay_flips(Mesh& mesh, const EdgeMap& constrained, const FaceMap& in_region) {
+  const double flat = std::cos(20.0 * M_PI / 180.0);
+  for (int sweep = 0; sweep < 20; ++sweep) {
+    int flips = 0;
+    for (EI e : mesh.edges()) {
+      if (constrained[e] || mesh.is_border(e)) continue;
+      const auto h = mesh.halfedge(e), t = mesh.opposite(h);
+      if (!in_region[mesh.face(h)] || !in_region[mesh.face(t)]) continue;
+      const VI a = mesh.source(h), b = mesh.target(h);
+      const VI c = mesh.target(mesh.next(h)), d = mesh.target(mesh.next(t));
+      const Point &pa = mesh.point(a), &pb = mesh.point(b), &pc = mesh.point(c), &pd = mesh.point(d);
+      if (angle_at(pc, pa, pb) + angle_at(pd, pa, pb) <= M_PI + 1e-9) continue;
+      const Vec3 n1 = (to_vec(pb) - to_vec(pa)).cross(to_vec(pc) - to_vec(pa)).normalized();
+      const Vec3 n2 = (to_vec(pa) - to_vec(pb)).cross(to_vec(pd) - to_vec(pb)).normalized();
+      if (!(n1.dot(n2) > flat)) continue;
+      if (mesh.halfedge(c, d) != Mesh::null_halfedge()) continue;
+      // The new pair (c, d, a) and (d, c, b) must keep the orientation of the old one.
+      const Vec3 m1 = (to_vec(pd) - to_vec(pc)).cross(to_vec(pa) - to_vec(pc));
+      const Vec3 m2 = (to_vec(pc) - to_vec(pd)).cross(to_vec(pb) - to_vec(pd));
+      if (!(m1.dot(n1 + n2) > 0.0 && m2.dot(n1 + n2) > 0.0)) continue;
+      CGAL::Euler::flip_edge(h, mesh);
+      ++flips;
+    }
+    if (flips == 0) break;
+  }
+}
+
+double smallest_angle(const Point& a, const Point& b, const Point& c) {
+  return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+}
+
+Vec3 normal_of(const Point& a, const Point& b, const Point& c) {
+  return (to_vec(b) - to_vec(a)).cross(to_vec(c) - to_vec(a));
+}
+
+// The corners of f with `from` replaced by `to`'s position (the shape f has after a collapse).
+std::array<Point, 3> corners_after(const Mesh& mesh, FI f, VI from, const Point& to) {
+  std::array<Point, 3> p;
+  int k = 0;
+  for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) p[k++] = v == from ? to : mesh.point(v);
+  return p;
+}
+
+// Needles the flips cannot mend: a band face whose smallest angle is below 20 degrees loses its
+// shortest edge by a collapse into one end, where the other end may go (not fixed, not on the
+// open boundary, all its faces in the band, on a constrained polyline only along it as one of
+// its inner vertices) and the collapse raises the smallest angle around it without folding a
+// face or lengthening an edge by more than half. The vertex kept keeps its place and identity;
+// the polylines keep every other vertex (their edges are marked again after the collapse).
+// Returns the number of collapses. Deterministic: faces in index order.
+template <class EdgeMap, class VertexMap, class IdMap, class FaceMap, class OnPolyline>
+int collapse_needles(Mesh& mesh, EdgeMap& constrained, VertexMap& fixed, IdMap& old_id,
+                     const FaceMap& in_region, const OnPolyline& on_polyline) {
+  constexpr double goal = 20.0 * M_PI / 180.0;
+  int collapses = 0;
+  std::vector<FI> bad;
+  for (FI f : mesh.faces()) {
+    if (!in_region[f]) continue;
+    std::array<Point, 3> p;
+    int k = 0;
+    for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) p[k++] = mesh.point(v);
+    if (smallest_angle(p[0], p[1], p[2]) < goal) bad.push_back(f);
+  }
+  for (FI f : bad) {
+    if (mesh.is_removed(f)) continue;
+    // Shortest edge of f.
+    auto h = mesh.halfedge(f), best = h;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k, h = mesh.next(h)) {
+      const double len = (to_vec(mesh.point(mesh.source(h))) - to_vec(mesh.point(mesh.target(h)))).norm();
+      if (len < shortest) shortest = len, best = h;
+    }
+    const EI e = mesh.edge(best);
+    if (mesh.is_border(e) || !CGAL::Euler::does_satisfy_link_condition(e, mesh)) continue;
+    double best_gain = 0.0;
+    VI gone = Mesh::null_vertex(), kept = Mesh::null_vertex();
+    for (const bool flip : {false, true}) {
+      const VI r = flip ? mesh.target(best) : mesh.source(best);
+      const VI q = flip ? mesh.source(best) : mesh.target(best);
+      if (fixed[r] || mesh.is_border(r)) continue;
+      if (on_polyline(r)) {  // only along its polyline, where it is an inner vertex
+        int along = 0;
+        for (auto g : CGAL::halfedges_around_target(mesh.halfedge(r), mesh))
+          along += constrained[mesh.edge(g)] ? 1 : 0;
+        if (!constrained[e] || along != 2) continue;
+      }
+      double before = M_PI, after = M_PI, longest_before = 0.0, longest_after = 0.0;
+      bool ok = true;
+      for (auto g : CGAL::halfedges_around_target(mesh.halfedge(r), mesh)) {
+        const FI g_face = mesh.face(g);
+        if (g_face == Mesh::null_face() || !in_region[g_face]) {
+          ok = false;
+          break;
+        }
+        longest_before = std::max(longest_before, (to_vec(mesh.point(mesh.source(g))) - to_vec(mesh.point(r))).norm());
+        const auto old_corners = corners_after(mesh, g_face, Mesh::null_vertex(), Point());
+        before = std::min(before, smallest_angle(old_corners[0], old_corners[1], old_corners[2]));
+        bool has_q = false;
+        for (VI v : CGAL::vertices_around_face(mesh.halfedge(g_face), mesh)) has_q |= v == q;
+        if (has_q) continue;  // removed with the edge
+        const auto p = corners_after(mesh, g_face, r, mesh.point(q));
+        const Vec3 n_old = normal_of(old_corners[0], old_corners[1], old_corners[2]);
+        const Vec3 n_new = normal_of(p[0], p[1], p[2]);
+        if (!(n_new.dot(n_old) > 0.2 * n_new.norm() * n_old.norm())) {
+          ok = false;
+          break;
+        }
+        after = std::min(after, smallest_angle(p[0], p[1], p[2]));
+        longest_after = std::max(longest_after, (to_vec(mesh.point(mesh.source(g))) - to_vec(mesh.point(q))).norm());
+      }
+      if (!ok || longest_after > 1.5 * longest_before || after - before <= best_gain) continue;
+      best_gain = after - before;
+      gone = r;
+      kept = q;
+    }
+    if (gone == Mesh::null_vertex()) continue;
+    const Point keep_at = mesh.point(kept);
+    const int keep_id = old_id[kept];
+    const bool keep_fixed = fixed[kept];
+    // The constrained edges at both ends, by their other vertex: restored on the vertex kept
+    // (a collapse merges two edges of each face of e into one, and may keep the unmarked one).
+    std::vector<VI> marked;
+    for (const VI end : {gone, kept})
+      for (auto g : CGAL::halfedges_around_target(mesh.halfedge(end), mesh))
+        if (constrained[mesh.edge(g)] && mesh.edge(g) != e) marked.push_back(mesh.source(g));
+    const VI v = CGAL::Euler::collapse_edge(e, mesh);
+    for (const VI x : marked)
+      if (x != gone && x != kept) constrained[mesh.edge(mesh.halfedge(x, v))] = true;
+    mesh.point(v) = keep_at;
+    old_id[v] = keep_id;
+    fixed[v] = keep_fixed;
+    ++collapses;
+  }
+  return collapses;
+}
+
 }  // namespace
 
 CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
@@ -61,7 +209,7 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   auto vfixed = mesh.add_property_map<VI, bool>("v:fixed", false).first;
   auto econ = mesh.add_property_map<EI, bool>("e:constrained", false).first;
   auto in_region = mesh.add_property_map<FI, bool>("f:region", false).first;
-  auto patch = mesh.add_property_map<FI, int>("f:patch", 0).first;
+  auto patch = mesh.add_property_map<FI, int>("f:patch", 0).first;  // 2 * sheet + in band
   for (VI v : mesh.vertices()) {
     old_id[v] = static_cast<int>(v.idx());
     vfixed[v] = v.idx() < in.constrained_vertices.size() && in.constrained_vertices[v.idx()];
@@ -80,11 +228,47 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     if (econ[e])
       segments.emplace_back(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1)));
   }
+  // Sheets: the faces connected across unconstrained edges (a patch and its host, the two
+  // sides of a seam, are different sheets). A vertex is projected, and located, only on its own
+  // sheet of the input: on the nearest surface, a patch laid over a slit would fall onto the
+  // host beneath it. The patch id CGAL carries to new faces is 2 * sheet + (in the band).
+  std::vector<int> sheet(F.size(), -1);
+  int sheets = 0;
+  for (FI seed : mesh.faces()) {
+    if (sheet[seed.idx()] >= 0) continue;
+    std::vector<FI> stack{seed};
+    sheet[seed.idx()] = sheets;
+    while (!stack.empty()) {
+      const FI f = stack.back();
+      stack.pop_back();
+      for (auto h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+        if (econ[mesh.edge(h)]) continue;
+        const FI g = mesh.face(mesh.opposite(h));
+        if (g != Mesh::null_face() && sheet[g.idx()] < 0) {
+          sheet[g.idx()] = sheets;
+          stack.push_back(g);
+        }
+      }
+    }
+    ++sheets;
+  }
+  for (FI f : mesh.faces()) patch[f] = 2 * sheet[f.idx()];
   const Mesh original = mesh;
-  FaceTree surface(faces(original).first, faces(original).second, original);
-  surface.accelerate_distance_queries();
+  std::vector<std::vector<FI>> sheet_faces(static_cast<std::size_t>(sheets));
+  for (FI f : original.faces()) sheet_faces[static_cast<std::size_t>(sheet[f.idx()])].push_back(f);
+  std::vector<std::unique_ptr<FaceTree>> surface;
+  for (const auto& fs : sheet_faces) {
+    surface.push_back(std::make_unique<FaceTree>(fs.begin(), fs.end(), original));
+    surface.back()->accelerate_distance_queries();
+  }
   SegmentTree polylines(segments.cbegin(), segments.cend());
   if (!segments.empty()) polylines.accelerate_distance_queries();
+  // The sheet of a vertex of the mesh being remeshed: that of its first face.
+  const auto sheet_of = [&](VI v) {
+    for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+      if (f != Mesh::null_face()) return patch[f] / 2;
+    return 0;
+  };
 
   const auto on_polyline = [&](VI v) {
     for (auto h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))
@@ -94,20 +278,20 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   const auto project = [&](VI v) {
     const Point& p = mesh.point(v);
     if (!segments.empty() && on_polyline(v)) return polylines.closest_point(p);
-    return surface.closest_point(p);
+    return surface[static_cast<std::size_t>(sheet_of(v))]->closest_point(p);
   };
 
   for (const RemeshBand& band : in.bands) {
     std::vector<FI> range;
     for (FI f : mesh.faces()) {
-      patch[f] = 0;
+      patch[f] &= ~1;
       if (!in_region[f]) continue;
       if (band.reach >= 0.0) {
         Vec3 c = Vec3::Zero();
         for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c += to_vec(mesh.point(v));
         if (distance_to_polyline(c / 3.0, in.band_curve) > band.reach) continue;
       }
-      patch[f] = 1;
+      patch[f] |= 1;
       range.push_back(f);
     }
     if (range.empty()) continue;
@@ -127,8 +311,9 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
                                    .projection_functor(project));
       range.clear();
       for (FI f : mesh.faces())
-        if (patch[f] == 1) range.push_back(f);
-      // Vertices that may move: inside the band, off every constrained polyline, not fixed.
+        if (patch[f] & 1) range.push_back(f);
+      // Vertices that may move: inside the band and not fixed; those on a constrained polyline
+      // slide along it (and are projected back onto the input polyline).
       std::vector<VI> inner;
       for (FI f : range)
         for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) inner.push_back(v);
@@ -136,22 +321,28 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
       inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
       auto held = mesh.add_property_map<VI, bool>("v:held", false).first;
       for (VI v : inner) {
-        bool h = vfixed[v] || on_polyline(v);
+        bool h = vfixed[v];
         for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
-          h = h || f == Mesh::null_face() || patch[f] != 1;
+          h = h || f == Mesh::null_face() || !(patch[f] & 1);
         held[v] = h;
       }
       PMP::tangential_relaxation(inner, mesh,
                                  CGAL::parameters::number_of_iterations(1)
                                      .edge_is_constrained_map(econ)
                                      .vertex_is_constrained_map(held)
-                                     .relax_constraints(false));
+                                     .relax_constraints(true));
       for (VI v : inner)
         if (!held[v]) mesh.point(v) = project(v);
       mesh.remove_property_map(held);
     }
     for (FI f : mesh.faces())
-      if (patch[f] == 1) in_region[f] = true;
+      if (patch[f] & 1) in_region[f] = true;
+  }
+
+  delaunay_flips(mesh, econ, in_region);
+  for (int round = 0; round < 4; ++round) {
+    if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline) == 0) break;
+    delaunay_flips(mesh, econ, in_region);
   }
 
   // Old faces by their vertex triple, to recognise faces the remesh left alone.
@@ -161,8 +352,8 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     std::sort(key.begin(), key.end());
     old_face.emplace(key, static_cast<int>(f));
   }
-  const auto locate = [&](const Vec3& p) {
-    const auto [q, face] = surface.closest_point_and_primitive(to_point(p));
+  const auto locate = [&](const Vec3& p, int on_sheet) {
+    const auto [q, face] = surface[static_cast<std::size_t>(on_sheet)]->closest_point_and_primitive(to_point(p));
     SurfaceLocation loc;
     loc.face = static_cast<int>(face.idx());
     const FaceIndices& t = F[face.idx()];
@@ -180,7 +371,7 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     out.positions.push_back(p);
     out.old_vertex.push_back(o);
     out.moved.push_back(moved);
-    out.vertex_location.push_back(moved ? locate(p) : SurfaceLocation{});
+    out.vertex_location.push_back(moved ? locate(p, sheet_of(v)) : SurfaceLocation{});
   }
   for (FI f : mesh.faces()) {
     FaceIndices t{};
@@ -209,7 +400,8 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     out.old_face.push_back(same);
     out.face_location.push_back(
         same >= 0 ? SurfaceLocation{}
-                  : locate((out.positions[t[0]] + out.positions[t[1]] + out.positions[t[2]]) / 3.0));
+                  : locate((out.positions[t[0]] + out.positions[t[1]] + out.positions[t[2]]) / 3.0,
+                           patch[f] / 2));
   }
   for (EI e : mesh.edges())
     if (econ[e] && !mesh.is_border(e))

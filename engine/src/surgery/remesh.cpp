@@ -154,7 +154,12 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   // Ends and junctions of constrained polylines stay put: a vertex with other than two
   // constrained edges (open boundary edges count).
   std::vector<int> degree(nv, 0);
-  for (const auto& [a, b] : params.constrained_edges) {
+  std::vector<std::pair<VertexId, VertexId>> constrained;
+  for (const auto& [a, b] : params.constrained_edges)
+    constrained.push_back(a.value < b.value ? std::pair{a, b} : std::pair{b, a});
+  std::sort(constrained.begin(), constrained.end());
+  constrained.erase(std::unique(constrained.begin(), constrained.end()), constrained.end());
+  for (const auto& [a, b] : constrained) {
     if (!a.valid() || !b.valid() || a.index() >= nv || b.index() >= nv ||
         (!detail::find_halfedge(mesh, a, b).valid() && !detail::find_halfedge(mesh, b, a).valid()))
       throw InvalidArgument("constrained_edges: " + std::to_string(a.value) + "-" +
@@ -239,6 +244,137 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   r.after = mesh_quality(r.mesh, r.region);
   for (const auto& [a, b] : out.constrained_edges) r.constrained_edges.emplace_back(VertexId(a), VertexId(b));
   return r;
+}
+
+}  // namespace sutura::engine
+
+namespace sutura::engine {
+
+namespace {
+
+std::pair<VertexId, VertexId> ordered(VertexId a, VertexId b) {
+  return a.value < b.value ? std::pair{a, b} : std::pair{b, a};
+}
+
+bool is_edge(const SurfaceMesh& mesh, VertexId a, VertexId b) {
+  return detail::find_halfedge(mesh, a, b).valid() || detail::find_halfedge(mesh, b, a).valid();
+}
+
+void sort_unique(std::vector<std::pair<VertexId, VertexId>>& e) {
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+}
+
+}  // namespace
+
+std::vector<std::pair<VertexId, VertexId>> chain_edges(
+    const SurfaceMesh& mesh, const std::vector<std::vector<VertexId>>& chains) {
+  std::vector<std::pair<VertexId, VertexId>> out;
+  for (auto c : chains) {
+    // A closed chain (its ends adjacent, at least three vertices) closes with that edge.
+    if (c.size() >= 3 && c.front().valid() && c.back().valid() &&
+        c.front().index() < mesh.num_vertices() && c.back().index() < mesh.num_vertices() &&
+        is_edge(mesh, c.front(), c.back()))
+      c.push_back(c.front());
+    for (std::size_t i = 0; i + 1 < c.size(); ++i)
+      if (c[i].valid() && c[i + 1].valid() && c[i].index() < mesh.num_vertices() &&
+          c[i + 1].index() < mesh.num_vertices() && c[i] != c[i + 1] && is_edge(mesh, c[i], c[i + 1]))
+        out.push_back(ordered(c[i], c[i + 1]));
+  }
+  sort_unique(out);
+  return out;
+}
+
+std::vector<std::pair<VertexId, VertexId>> value_border_edges(const SurfaceMesh& mesh,
+                                                              const std::vector<int>& face_value) {
+  std::vector<std::pair<VertexId, VertexId>> out;
+  for (std::size_t h = 0; h < 3 * mesh.num_faces() && face_value.size() >= mesh.num_faces(); ++h) {
+    const HalfedgeId t = mesh.twin(HalfedgeId(h));
+    if (!t.valid()) continue;
+    if (face_value[SurfaceMesh::face(HalfedgeId(h)).index()] != face_value[SurfaceMesh::face(t).index()])
+      out.push_back(ordered(mesh.from_vertex(HalfedgeId(h)), mesh.to_vertex(HalfedgeId(h))));
+  }
+  sort_unique(out);
+  return out;
+}
+
+std::vector<std::pair<VertexId, VertexId>> carry_edges(
+    const EditMaps& maps, const SurfaceMesh& after,
+    const std::vector<std::pair<VertexId, VertexId>>& edges) {
+  std::vector<std::pair<VertexId, VertexId>> out;
+  if (edges.empty()) return out;
+  // Old vertex -> the given edges at it; new vertex -> the given edges it lies on.
+  std::map<std::int32_t, std::vector<std::size_t>> at;
+  std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> index;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto [a, b] = ordered(edges[e].first, edges[e].second);
+    at[a.value].push_back(e);
+    at[b.value].push_back(e);
+    index.emplace(std::pair{a.value, b.value}, e);
+  }
+  std::vector<std::vector<std::size_t>> on(maps.vertices.size());
+  for (std::size_t v = 0; v < maps.vertices.size(); ++v) {
+    const VertexOrigin& o = maps.vertices[v];
+    if (o.parents.size() == 1) {
+      if (const auto it = at.find(o.parents[0].value); it != at.end()) on[v] = it->second;
+    } else if (o.parents.size() == 2 && o.kind == VertexOriginKind::Interpolated) {
+      const auto [a, b] = ordered(o.parents[0], o.parents[1]);
+      if (const auto it = index.find({a.value, b.value}); it != index.end()) on[v] = {it->second};
+    }
+  }
+  for (std::size_t h = 0; h < 3 * after.num_faces(); ++h) {
+    const VertexId u = after.from_vertex(HalfedgeId(h)), w = after.to_vertex(HalfedgeId(h));
+    for (const std::size_t e : on[u.index()])
+      if (std::find(on[w.index()].begin(), on[w.index()].end(), e) != on[w.index()].end()) {
+        out.push_back(ordered(u, w));
+        break;
+      }
+  }
+  sort_unique(out);
+  return out;
+}
+
+RemeshParams band_around(const SurfaceMesh& mesh, const std::vector<std::vector<VertexId>>& chains,
+                         double band_width, double target_edge_length) {
+  RemeshParams p;
+  p.constrained_edges = chain_edges(mesh, chains);
+  if (p.constrained_edges.empty()) throw InvalidArgument("band_around: no chain has an edge");
+  double L = target_edge_length;
+  if (!(L > 0.0)) {
+    // Median edge length around the chains.
+    std::vector<bool> near(mesh.num_vertices(), false);
+    for (const auto& [a, b] : p.constrained_edges) near[a.index()] = near[b.index()] = true;
+    for (int ring = 0; ring < 2; ++ring) {
+      std::vector<bool> grown = near;
+      for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+        const auto v = mesh.face_vertices(FaceId(f));
+        if (near[v[0].index()] || near[v[1].index()] || near[v[2].index()])
+          for (const VertexId w : v) grown[w.index()] = true;
+      }
+      near = std::move(grown);
+    }
+    std::vector<double> lengths;
+    for (std::size_t h = 0; h < 3 * mesh.num_faces(); ++h) {
+      const VertexId u = mesh.from_vertex(HalfedgeId(h)), w = mesh.to_vertex(HalfedgeId(h));
+      if (near[u.index()] && near[w.index()]) lengths.push_back((mesh.position(u) - mesh.position(w)).norm());
+    }
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    L = lengths[lengths.size() / 2];
+  }
+  p.target_edge_length = L;
+  std::vector<Vec3> points;
+  std::vector<FaceId> region;
+  for (const auto& c : chains) {
+    std::vector<Vec3> line;
+    for (const VertexId v : c)
+      if (v.valid() && v.index() < mesh.num_vertices()) line.push_back(mesh.position(v));
+    if (line.size() < 2) continue;
+    for (const FaceId f : faces_near_polyline(mesh, line, band_width * L)) region.push_back(f);
+  }
+  std::sort(region.begin(), region.end());
+  region.erase(std::unique(region.begin(), region.end()), region.end());
+  p.region = std::move(region);
+  return p;
 }
 
 }  // namespace sutura::engine

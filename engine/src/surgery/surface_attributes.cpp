@@ -1,6 +1,7 @@
 #include "sutura/engine/surgery/surface_attributes.hpp"
 
 #include <algorithm>
+#include <map>
 #include <string>
 
 #include "sutura/engine/errors.hpp"
@@ -44,22 +45,56 @@ Loads carry_loads(const EditMaps& maps, const Loads& old, const std::vector<Vert
   return out;
 }
 
+// New vertices inserted on old edges: (a, b) with a < b -> (weight of b, new vertex), sorted.
+using EdgePoints = std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::pair<double, VertexId>>>;
+
+EdgePoints points_on_old_edges(const EditMaps& maps) {
+  EdgePoints on;
+  for (std::size_t v = 0; v < maps.vertices.size(); ++v) {
+    const VertexOrigin& o = maps.vertices[v];
+    if (o.kind != VertexOriginKind::Interpolated || o.parents.size() != 2) continue;
+    const bool swap = o.parents[0].value > o.parents[1].value;
+    const auto key = swap ? std::pair{o.parents[1].value, o.parents[0].value}
+                          : std::pair{o.parents[0].value, o.parents[1].value};
+    on[key].emplace_back(swap ? o.weights[0] : o.weights[1], VertexId(v));
+  }
+  for (auto& [key, points] : on) std::sort(points.begin(), points.end());
+  return on;
+}
+
+// A chain follows its vertices (their images) and takes in the vertices an edit inserted on
+// its edges, in order; removed vertices drop out.
 std::vector<VertexId> carry_chain(const std::vector<VertexId>& chain,
-                                  const std::vector<VertexId>& image) {
+                                  const std::vector<VertexId>& image, const EdgePoints& on) {
   std::vector<VertexId> out;
-  for (const auto v : chain)
-    if (v.index() < image.size() && image[v.index()].valid() &&
-        (out.empty() || out.back() != image[v.index()]))
-      out.push_back(image[v.index()]);
+  auto add = [&](VertexId v) {
+    if (v.valid() && (out.empty() || out.back() != v)) out.push_back(v);
+  };
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    const VertexId v = chain[i];
+    if (v.index() < image.size()) add(image[v.index()]);
+    if (i + 1 == chain.size()) break;
+    const VertexId w = chain[i + 1];
+    const bool forward = v.value < w.value;
+    const auto it = on.find(forward ? std::pair{v.value, w.value} : std::pair{w.value, v.value});
+    if (it == on.end()) continue;
+    if (forward)
+      for (const auto& p : it->second) add(p.second);
+    else
+      for (auto p = it->second.rbegin(); p != it->second.rend(); ++p) add(p->second);
+  }
   return out;
 }
 
-SurfaceMarks carry_marks(const SurfaceMarks& old, const std::vector<VertexId>& image) {
+SurfaceMarks carry_marks(const SurfaceMarks& old, const std::vector<VertexId>& image,
+                         const EditMaps& maps) {
   SurfaceMarks out;
+  if (old.incisions.empty() && old.sutures.empty()) return out;
+  const EdgePoints on = points_on_old_edges(maps);
   for (const auto& c : old.incisions)
-    if (auto n = carry_chain(c, image); n.size() >= 2) out.incisions.push_back(std::move(n));
+    if (auto n = carry_chain(c, image, on); n.size() >= 2) out.incisions.push_back(std::move(n));
   for (const auto& c : old.sutures)
-    if (auto n = carry_chain(c, image); n.size() >= 2) out.sutures.push_back(std::move(n));
+    if (auto n = carry_chain(c, image, on); n.size() >= 2) out.sutures.push_back(std::move(n));
   return out;
 }
 
@@ -125,7 +160,7 @@ SurfaceAttributes carry_attributes(const EditMaps& maps, const SurfaceMesh& old_
       carry_velocity(maps, velocity, old_vertex_count),
       state_model,
       carry_points(maps, reference),
-      carry_marks(marks, image),
+      carry_marks(marks, image, maps),
   };
   return out;
 }

@@ -22,7 +22,7 @@ bool PathEvent::same_as(const PathEvent& o) const {
   return false;
 }
 
-PathEvent point_event(const SurfaceMesh& mesh, const SurfacePoint& p, double sliver) {
+PathEvent point_event(const SurfaceMesh& mesh, const SurfacePoint& p, double snap) {
   const auto fv = mesh.face_vertices(p.face);
   PathEvent e;
   int kmax = 0, kmin = 0;
@@ -30,16 +30,16 @@ PathEvent point_event(const SurfaceMesh& mesh, const SurfacePoint& p, double sli
     if (p.bary[k] > p.bary[kmax]) kmax = k;
     if (p.bary[k] < p.bary[kmin]) kmin = k;
   }
-  if (p.bary[kmax] > 1.0 - sliver) {
+  if (p.bary[kmax] > 1.0 - snap) {
     e.kind = PathEvent::Kind::Vertex;
     e.vertex = fv[kmax];
     return e;
   }
-  if (p.bary[kmin] < sliver) {
+  if (p.bary[kmin] < snap) {
     // Near the edge opposite corner kmin: project onto it.
     const int j = (kmin + 1) % 3, k = (kmin + 2) % 3;
     const double t = p.bary[k] / (p.bary[j] + p.bary[k]);
-    if (t < sliver || t > 1.0 - sliver) {
+    if (t < snap || t > 1.0 - snap) {
       e.kind = PathEvent::Kind::Vertex;
       e.vertex = t < 0.5 ? fv[j] : fv[k];
       return e;
@@ -56,9 +56,6 @@ PathEvent point_event(const SurfaceMesh& mesh, const SurfacePoint& p, double sli
   return e;
 }
 
-namespace {
-
-// Faces adjacent to an event's location.
 std::vector<FaceId> event_faces(const SurfaceMesh& mesh, const PathEvent& e) {
   switch (e.kind) {
     case PathEvent::Kind::Vertex: return mesh.vertex_faces(e.vertex);
@@ -74,6 +71,31 @@ std::vector<FaceId> event_faces(const SurfaceMesh& mesh, const PathEvent& e) {
   }
   return {};
 }
+
+Eigen::Vector3d event_bary(const SurfaceMesh& mesh, const PathEvent& e, FaceId f) {
+  const auto fv = mesh.face_vertices(f);
+  auto corner = [&](VertexId v) {
+    for (int k = 0; k < 3; ++k)
+      if (fv[k] == v) return k;
+    throw Error("incise: internal error: a path event is not on the face it is placed in");
+  };
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  switch (e.kind) {
+    case PathEvent::Kind::Vertex: b[corner(e.vertex)] = 1.0; break;
+    case PathEvent::Kind::Edge:
+      b[corner(e.edge_a)] = 1.0 - e.t;
+      b[corner(e.edge_b)] = e.t;
+      break;
+    case PathEvent::Kind::Face:
+      if (e.face != f)
+        throw Error("incise: internal error: a path event is not on the face it is placed in");
+      b = e.bary;
+      break;
+  }
+  return b;
+}
+
+namespace {
 
 Vec3 event_position(const SurfaceMesh& mesh, const PathEvent& e) {
   switch (e.kind) {
@@ -94,7 +116,7 @@ Vec3 event_position(const SurfaceMesh& mesh, const PathEvent& e) {
 
 std::vector<PathEvent> trace_between(const SurfaceMesh& mesh, const SurfacePoint& p,
                                      const PathEvent& pe, const SurfacePoint& q,
-                                     const PathEvent& qe, double sliver, int segment) {
+                                     const PathEvent& qe, double snap, int segment) {
   const std::string where = "incision segment " + std::to_string(segment) + " (" +
                             point_text(p.position) + " to " + point_text(q.position) + ")";
   const Vec3 d = q.position - p.position;
@@ -109,7 +131,12 @@ std::vector<PathEvent> trace_between(const SurfaceMesh& mesh, const SurfacePoint
                                   "in between");
   m.normalize();
   const Vec3 dhat = d / len;
-  auto side = [&](const Vec3& x) { return m.dot(x - p.position); };
+  // Signed distance from the plane; within rounding (1e-12 rad seen from p) of it, on it, so
+  // that a trace through a vertex (along a mesh line, say) finds the vertex as a crossing.
+  auto side = [&](const Vec3& x) {
+    const double s = m.dot(x - p.position);
+    return std::abs(s) <= 1e-12 * (x - p.position).norm() ? 0.0 : s;
+  };
   auto progress = [&](const Vec3& x) { return dhat.dot(x - p.position); };
 
   const std::vector<FaceId> goal = event_faces(mesh, qe);
@@ -123,7 +150,7 @@ std::vector<PathEvent> trace_between(const SurfaceMesh& mesh, const SurfacePoint
   PathEvent cur = pe;
   std::vector<FaceId> faces = event_faces(mesh, cur);
   double prog = progress(event_position(mesh, cur));
-  const double eps = 1e-9 * len;
+  const double eps = 1e-12 * len;  // rounding only: the edge or vertex stood on is skipped anyway
   const std::size_t max_steps = 4 * mesh.num_faces() + 16;
   for (std::size_t step = 0; !reached(faces); ++step) {
     if (step > max_steps) throw InvalidArgument(where + ": the path could not be traced");
@@ -148,7 +175,7 @@ std::vector<PathEvent> trace_between(const SurfaceMesh& mesh, const SurfacePoint
         if (px <= prog + eps || px >= best_prog) continue;
         best_prog = px;
         found = true;
-        if (t < sliver || t > 1.0 - sliver) {
+        if (t < snap || t > 1.0 - snap) {
           next.kind = PathEvent::Kind::Vertex;
           next.vertex = t < 0.5 ? a : b;
         } else {

@@ -23,6 +23,10 @@ class TriangleSoup {
   [[nodiscard]] const Vec3& position(int v) const { return positions_[v]; }
   [[nodiscard]] const FaceIndices& face(int f) const { return faces_[f]; }
   [[nodiscard]] const EditMaps& maps() const { return maps_; }
+  /// The soup faces descending from original face `parent` (they tile it).
+  [[nodiscard]] const std::vector<int>& faces_of(FaceId parent) const {
+    return faces_of_parent_[parent.index()];
+  }
 
   /// Face holding the directed edge u -> v, or -1.
   [[nodiscard]] int face_with_edge(int u, int v) const;

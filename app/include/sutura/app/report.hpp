@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sutura/app/workspace.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::app {
 
@@ -16,5 +17,9 @@ std::string position_hash(const engine::SurfaceMesh& mesh);
 
 /// Counts, boundary loops, area, bounds and position hash of one object.
 nlohmann::json object_summary(const SceneObject& object);
+
+/// Face count, smallest angle, 5th-percentile smallest angle (degrees) and edge-length range
+/// (mm) of a set of faces (engine::mesh_quality).
+nlohmann::json mesh_quality_json(const engine::MeshQuality& q);
 
 }  // namespace sutura::app

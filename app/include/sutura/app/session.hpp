@@ -244,6 +244,8 @@ struct JoinOp {
   /// Where the joined shape starts (`placement`: "mean" or "onto_b"); held vertices (any
   /// fixed translation) are passed on by the replay.
   engine::SuturePlacement placement = engine::SuturePlacement::Mean;
+  /// Remesh the band around the seams afterwards (session format 2; version 1: false).
+  bool remesh = true;
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
@@ -254,6 +256,8 @@ struct PatchOp {
   engine::Vec3 end = engine::Vec3::Zero();
   engine::PatchPlanParams params;
   engine::ShellMaterial material;
+  /// Remesh the band around the seams afterwards (session format 2; version 1: false).
+  bool remesh = true;
 };
 
 /// Removes the region between cut planes (or beyond one) and optionally sutures the two
@@ -267,6 +271,8 @@ struct ResectOp {
   /// Anastomosis: the loops' first vertices are the ones nearest this point (default: the
   /// point of each loop farthest along +z), so the two ends are sutured without a twist.
   std::optional<engine::Vec3> align;
+  /// Remesh the band around the anastomosis afterwards (session format 2; version 1: false).
+  bool remesh = true;
 };
 
 /// Cross-section of an object by a plane, before and after, recorded under `name`.

@@ -14,7 +14,10 @@ enum class IncisionMode {
   SnapToEdges,
   /// Follow the surface between consecutive points (the trace of the plane through both
   /// points that contains the mean surface normal) and insert vertices where the curve
-  /// crosses edges, so the incision need not follow the mesh.
+  /// crosses edges, so the incision need not follow the mesh. The cut's vertices lie on that
+  /// curve: a crossing or point is put on an existing vertex or edge only within 1e-6 of an
+  /// edge length of it, or, where exact vertices would make a degenerate triangle (the curve
+  /// grazes a vertex), within at most 1e-2. Thin triangles beside the lips are left to `remesh`.
   CutThroughFaces,
 };
 
@@ -23,15 +26,15 @@ IncisionMode parse_incision_mode(const std::string& name);
 
 struct IncisionParams {
   IncisionMode mode = IncisionMode::CutThroughFaces;
-  /// Sliver guard, fraction of an edge in (0, 0.5): a crossing closer than this to an edge end
-  /// (or a point closer than this, in barycentric terms, to an edge or corner) snaps to that
-  /// vertex or edge instead of creating a thin triangle.
+  /// Checked to be in (0, 0.5), otherwise unused: the former sliver guard (crossings this
+  /// close to an edge end snapped to the vertex) moved the lips off the curve and, with dense
+  /// points, made the cut revisit vertices. Kept so that sessions that set it still load.
   double sliver_fraction = 0.2;
   /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
   double max_distance = 1.0;
   /// Cut-through only: remesh a band around the traced cut before opening it (remesh.hpp), the
   /// cut's edges kept as a constrained polyline, so the lips get well-shaped triangles while
-  /// their vertices stay on the trace. Off: the raw trace (the sliver guard alone).
+  /// their vertices stay on the trace. Off: the raw trace (exact, thin triangles included).
   bool remesh = true;
   /// mm, >= 0: edge length of the band; 0 = the mean edge length of the faces the curve's
   /// points lie in (the host's spacing).
@@ -43,6 +46,9 @@ struct IncisionParams {
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;
+  /// Edges of the mesh passed in that the remesh keeps as polylines (earlier sutures, material
+  /// borders); the parts the cut splits are kept too.
+  std::vector<std::pair<VertexId, VertexId>> constrained_edges;
 };
 
 struct IncisionResult {
@@ -57,18 +63,20 @@ struct IncisionResult {
   bool starts_on_boundary = false;
   bool ends_on_boundary = false;
   int inserted_vertices = 0;  ///< vertices created where the curve crosses edges or faces
-  int snapped_points = 0;     ///< curve crossings moved to an existing vertex by the sliver guard
+  int snapped_points = 0;     ///< cut vertices that are vertices of the mesh passed in
   double length = 0.0;        ///< mm, along the cut
   bool remeshed = false;      ///< the band around the cut was remeshed
   MeshQuality band_before, band_after;  ///< of the band, when remeshed
 };
 
 /// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the
-/// surface). Throws InvalidArgument naming the problem for: fewer than two points, a point off
-/// the surface, two consecutive points on the same spot, a curve that crosses itself or runs
-/// along or across the boundary between its ends, a path that cannot be traced (it would leave
-/// the surface). Returns the new mesh (validate() holds) and the parent maps.
-/// Cost: O(F) per point for the projection plus O(F log F) for the rebuild.
+/// surface; consecutive points on the same spot count once). Throws InvalidArgument naming the
+/// problem for: fewer than two points, a point off the surface, all points on one spot, a
+/// curve that crosses or touches itself or runs along or across the boundary between its ends,
+/// a path that cannot be traced (it would leave the surface). Returns the new mesh (validate()
+/// holds) and the parent maps.
+/// Cost: O(F) per point for the projection plus O(F log F) for the rebuild (once more, rarely,
+/// when the curve grazes a vertex).
 IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
                       const IncisionParams& params = {});
 

@@ -66,6 +66,30 @@ struct RemeshResult {
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
 };
 
+/// Consecutive vertex pairs of `chains` that are edges of `mesh` (a chain's pairs that are not,
+/// e.g. after an edit collapsed a vertex between them, are skipped); a chain of three or more
+/// whose ends are adjacent is closed. Sorted, unique.
+std::vector<std::pair<VertexId, VertexId>> chain_edges(
+    const SurfaceMesh& mesh, const std::vector<std::vector<VertexId>>& chains);
+
+/// Edges between faces of different values of `face_value` (materials: a patch's border).
+std::vector<std::pair<VertexId, VertexId>> value_border_edges(const SurfaceMesh& mesh,
+                                                              const std::vector<int>& face_value);
+
+/// The edges of `after` (an edit of the mesh `maps` start from) that lie along the given
+/// edges of that mesh: both ends descend from one given edge (a copy of an end, or a point
+/// interpolated between its two ends). Sorted, unique. Cost O(V + F + edges).
+std::vector<std::pair<VertexId, VertexId>> carry_edges(
+    const EditMaps& maps, const SurfaceMesh& after,
+    const std::vector<std::pair<VertexId, VertexId>>& edges);
+
+/// Parameters that remesh the band of faces within `band_width` target lengths of `chains`
+/// (sutures, lips), the chains' edges constrained. `target_edge_length` 0: the median edge
+/// length of the faces with a corner on a chain's 2-ring (the host's spacing, robust to the
+/// few short edges a suture leaves). Throws InvalidArgument when no chain has an edge.
+RemeshParams band_around(const SurfaceMesh& mesh, const std::vector<std::vector<VertexId>>& chains,
+                         double band_width, double target_edge_length = 0.0);
+
 /// Remeshes `params.region` of `mesh`. Deterministic (CGAL's remesher draws no random numbers
 /// and visits elements in index order; nothing here depends on the thread count).
 /// Throws InvalidArgument naming the field for: target_edge_length <= 0 or non-finite or
