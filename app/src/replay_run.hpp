@@ -73,6 +73,7 @@ struct Run {
   json execute(const JoinOp& op);
   json execute(const PatchOp& op);
   json execute(const ResectOp& op);
+  json execute(const RemeshOp& op);
   json execute(const MeasureOp& op);
   json execute(const UndoOp& op);
   json execute(const RedoOp& op);

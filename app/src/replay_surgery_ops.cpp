@@ -38,27 +38,6 @@ std::vector<std::pair<engine::VertexId, engine::VertexId>> feature_edges(const S
   return edges;
 }
 
-// After a suture: the band of two edge lengths around `seams` is remeshed (the seams, earlier
-// sutures, material borders and kept vertices constrained), so the faces the pairing left
-// beside the seam are well shaped. Faces of material `keep_material` (a patch: laid out far
-// from its rest shape, its strain varies too fast across the band to be resampled) are left
-// as they are. Returns the band's quality before and after.
-json remesh_around(SceneObject& obj, const std::vector<std::vector<engine::VertexId>>& seams,
-                   int keep_material = -1) {
-  engine::RemeshParams p = engine::band_around(obj.mesh, seams, 2.0);
-  if (keep_material >= 0)
-    std::erase_if(*p.region, [&](engine::FaceId f) {
-      return obj.sim.face_material[f.index()] == keep_material;
-    });
-  const auto features = feature_edges(obj);
-  p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
-  p.constrained_vertices = kept_vertices(obj);
-  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
-  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
-  return {{"target_edge_length_mm", p.target_edge_length},
-          {"before", mesh_quality_json(r.before)},
-          {"after", mesh_quality_json(r.after)}};
-}
 
 
 // Keep memory bounded on long GUI sessions: each entry is a copy of every object.
@@ -207,7 +186,6 @@ json Run::execute(const JoinOp& op) {
             {"sutures", sutures},
             {"merged_vertices", r.merged.size()},
             {"displaced_vertices", r.displaced.size()}};
-  if (op.remesh) j["remesh"] = remesh_around(obj, r.seams);
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -232,6 +210,26 @@ json Run::execute(const PatchOp& op) {
   engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
   engine::start_relaxation(obj.mesh, obj.sim, r.merged, patch_faces);
   for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
+  json remeshed;
+  if (op.remesh) {
+    // The host's side of the seams: the pairing inserted vertices along the lips, next to
+    // existing ones, and the thin triangles it left could not stretch in the relaxation. The
+    // patch's own faces are kept: laid out narrow over the slit, far from their flat rest
+    // shape, their strain varies too fast across the band to be resampled (docs/remeshing.md).
+    const int patch_material = static_cast<int>(obj.sim.materials.size()) - 1;
+    engine::RemeshParams p = engine::band_around(obj.mesh, r.seams, 2.0);
+    std::erase_if(*p.region, [&](engine::FaceId f) {
+      return obj.sim.face_material[f.index()] == patch_material;
+    });
+    const auto features = feature_edges(obj);
+    p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
+    p.constrained_vertices = kept_vertices(obj);
+    const engine::RemeshResult rr = engine::remesh(obj.mesh, p);
+    engine::apply_edit(obj.mesh, obj.sim, rr.mesh, rr.maps);
+    remeshed = {{"target_edge_length_mm", p.target_edge_length},
+                {"before", mesh_quality_json(rr.before)},
+                {"after", mesh_quality_json(rr.after)}};
+  }
   json sutures = json::array();
   for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
   json j = {{"object", op.object},
@@ -240,8 +238,7 @@ json Run::execute(const PatchOp& op) {
             {"patch_faces", plan.rest.num_faces()},
             {"patch_area_mm2", plan.rest.total_area()},
             {"sutures", sutures}};
-  if (op.remesh)
-    j["remesh"] = remesh_around(obj, r.seams, static_cast<int>(obj.sim.materials.size()) - 1);
+  if (!remeshed.is_null()) j["remesh"] = remeshed;
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -281,8 +278,35 @@ json Run::execute(const ResectOp& op) {
     engine::start_relaxation(obj.mesh, obj.sim, r.merged, {});
     for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
     j["anastomosis"] = suture_report(r.sutures[0]);
-    if (op.remesh) j["remesh"] = remesh_around(obj, r.seams);
+    }
+  j["mesh"] = mesh_counts(obj);
+  return j;
+}
+
+json Run::execute(const RemeshOp& op) {
+  remember();
+  SceneObject& obj = object(op.object);
+  engine::RemeshParams p;
+  if (!op.near.empty()) {
+    p.region = engine::faces_near_polyline(obj.mesh, op.near, op.radius);
+    if (p.region->empty())
+      throw std::runtime_error("near: no face of '" + op.object + "' has a corner within " +
+                               std::to_string(op.radius) + " mm of the points");
   }
+  p.target_edge_length = op.target_edge_length > 0.0
+                             ? op.target_edge_length
+                             : engine::mean_edge_length(obj.mesh, p.region.value_or(std::vector<engine::FaceId>{}));
+  p.grading = op.grading;
+  if (op.grading > 1.0) p.grading_curve = op.near;
+  p.iterations = op.iterations;
+  p.constrained_edges = feature_edges(obj);
+  p.constrained_vertices = kept_vertices(obj);
+  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  json j = {{"object", op.object},
+            {"target_edge_length_mm", p.target_edge_length},
+            {"before", mesh_quality_json(r.before)},
+            {"after", mesh_quality_json(r.after)}};
   j["mesh"] = mesh_counts(obj);
   return j;
 }

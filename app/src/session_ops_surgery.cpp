@@ -93,7 +93,6 @@ JoinOp parse_join(Fields& f) {
       s.finish();
     }
   }
-  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
   return op;
 }
 
@@ -147,9 +146,6 @@ ResectOp parse_resect(Fields& f) {
   if (op.anastomosis && op.planes.size() != 2)
     f.fail("anastomosis", "needs two planes (two loose ends to suture)");
   if (auto a = f.optional_vec3("align")) op.align = vec(*a);
-  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
-  if (op.remesh && !op.anastomosis && f.has("remesh"))
-    f.fail("remesh", "remeshes the band around an anastomosis: needs \"anastomosis\": true");
   return op;
 }
 
@@ -177,12 +173,32 @@ MeasureOp parse_measure(Fields& f) {
 
 }  // namespace
 
+RemeshOp parse_remesh(Fields& f) {
+  RemeshOp op;
+  op.object = object_name(f);
+  if (f.has("near")) {
+    op.near = points(f, "near");
+    if (op.near.empty()) f.fail("near", "give at least one point");
+    op.radius = f.optional_positive("radius", 1.0);
+    if (!f.has("radius")) f.fail("radius", "missing: the region is the faces within radius mm of near");
+  } else if (f.has("radius")) {
+    f.fail("radius", "goes with near (the polyline or point the region is around)");
+  }
+  if (f.has("target_edge_length")) op.target_edge_length = f.optional_positive("target_edge_length", 1.0);
+  op.grading = f.optional_number("grading", 1.0);
+  if (!(op.grading >= 1.0 && op.grading <= 10.0)) f.fail("grading", "must be in [1, 10]");
+  if (op.grading > 1.0 && op.near.empty()) f.fail("grading", "needs near (the curve it grows from)");
+  op.iterations = f.optional_int("iterations", 3, 1, 100);
+  return op;
+}
+
 const std::vector<OpParser>& surgery_op_parsers() {
   static const std::vector<OpParser> parsers = {
       {"incise", [](Fields& f, const std::filesystem::path&) -> Op { return parse_incise(f); }},
       {"join", [](Fields& f, const std::filesystem::path&) -> Op { return parse_join(f); }},
       {"patch", [](Fields& f, const std::filesystem::path&) -> Op { return parse_patch(f); }},
       {"resect", [](Fields& f, const std::filesystem::path&) -> Op { return parse_resect(f); }},
+      {"remesh", [](Fields& f, const std::filesystem::path&) -> Op { return parse_remesh(f); }},
       {"measure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_measure(f); }},
       {"undo", [](Fields&, const std::filesystem::path&) -> Op { return UndoOp{}; }},
       {"redo", [](Fields&, const std::filesystem::path&) -> Op { return RedoOp{}; }},

@@ -244,3 +244,71 @@ TEST(SurgeryOps, JoiningSessionIsDeterministic) {
 }
 
 }  // namespace
+
+namespace {
+
+const std::string kHeader2 = "{\"format\": \"sutura-session\", \"version\": 2}\n";
+
+// A held tube at equilibrium under 80 mmHg, then remeshed round its middle at half its
+// spacing: the state and rest shape follow, the equilibrium found again on the new mesh moves
+// the probed point by far less than 1 %, and fixed vertices stay where they were.
+TEST(SurgeryOps, RemeshOpKeepsAPressurisedEquilibrium) {
+  const std::string prefix =
+      kHeader2 + kTube +
+      "{\"op\": \"material\", \"object\": \"t\", \"youngs_modulus\": 1, \"poisson_ratio\": 0.45, \"thickness\": 0.3}\n"
+      "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": \"all\"}\n"
+      "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.0107}\n"
+      "{\"op\": \"solve\", \"objects\": [\"t\"]}\n"
+      "{\"op\": \"probe\", \"name\": \"p\", \"object\": \"t\", \"point\": [4, 0, 10]}\n";
+  const std::string remesh =
+      "{\"op\": \"remesh\", \"object\": \"t\", \"near\": [[4, 0, 7], [4, 0, 13]], \"radius\": 3, "
+      "\"target_edge_length\": 0.5}\n"
+      "{\"op\": \"solve\", \"objects\": [\"t\"]}\n"
+      "{\"op\": \"probe\", \"name\": \"q\", \"object\": \"t\", \"point\": [4, 0, 10]}\n";
+  const ReplayResult r = run(prefix + remesh, "remesh_op");
+  const auto& actions = r.report["actions"];
+  nlohmann::json remeshed, p, q;
+  for (const auto& a : actions) {
+    if (a["op"] == "remesh") remeshed = a;
+    if (a["op"] == "probe") (p.is_null() ? p : q) = a;
+  }
+  ASSERT_FALSE(remeshed.is_null());
+  EXPECT_GT(remeshed["after"]["faces"].get<int>(), remeshed["before"]["faces"].get<int>());
+  EXPECT_GT(remeshed["after"]["min_angle_deg"].get<double>(), 20.0);
+  const double before = p["values"]["|u|"].get<double>(), after = q["values"]["|u|"].get<double>();
+  EXPECT_GT(before, 0.1);
+  EXPECT_LT(std::abs(after - before), 0.01 * before) << before << " -> " << after;
+}
+
+TEST(SurgeryOps, RemeshOpRefusesBadRegionsAndLengths) {
+  std::string e = failure(kHeader2 + kTube +
+                              "{\"op\": \"remesh\", \"object\": \"t\", \"near\": [[100, 0, 0]], \"radius\": 1}\n",
+                          3);
+  EXPECT_NE(e.find("near"), std::string::npos) << e;
+  e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"target_edge_length\": 0}\n", 3);
+  EXPECT_NE(e.find("target_edge_length"), std::string::npos) << e;
+  e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"target_edge_length\": 500}\n", 3);
+  EXPECT_NE(e.find("target_edge_length"), std::string::npos) << e;
+  e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"radius\": 2}\n", 3);
+  EXPECT_NE(e.find("radius"), std::string::npos) << e;
+}
+
+// Version 1 sessions keep the raw trace of a cut-through incision (they were recorded before
+// the band remesh); version 2 sessions remesh the band unless told not to.
+TEST(SurgeryOps, TheSessionVersionDecidesWhetherAnIncisionIsRemeshed) {
+  const std::string incise =
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 6.3], [0, 4, 13.1]]}\n";
+  auto remeshed = [&](const std::string& text, const std::string& name) {
+    const ReplayResult r = run(text, name);
+    for (const auto& a : r.report["actions"])
+      if (a["op"] == "incise") return a.contains("remesh");
+    return false;
+  };
+  EXPECT_FALSE(remeshed(kHeader + kTube + incise, "v1"));
+  EXPECT_TRUE(remeshed(kHeader2 + kTube + incise, "v2"));
+  std::string off = incise;
+  off.insert(off.size() - 2, ", \"remesh\": false");
+  EXPECT_FALSE(remeshed(kHeader2 + kTube + off, "v2off"));
+}
+
+}  // namespace

@@ -36,6 +36,7 @@ json incise_op(const std::string& object, const std::vector<engine::Vec3>& point
   json pts = json::array();
   for (const auto& p : points) pts.push_back(point_json(p));
   return {{"op", "incise"}, {"object", object}, {"points", pts}, {"mode", snap ? "snap" : "cut"},
+          // Recorded, so a session the GUI continues replays the same whatever its version.
           {"remesh", !snap}};
 }
 
@@ -43,8 +44,7 @@ json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, 
   json chains = json::array();
   for (const auto* c : {&a, &b})
     chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
-  // "remesh" is recorded, so a session the GUI continues replays the same whatever its version.
-  json op = {{"op", "join"}, {"object", object}, {"chains", chains}, {"remesh", true}};
+  json op = {{"op", "join"}, {"object", object}, {"chains", chains}};
   if (onto_b) op["placement"] = "onto_b";
   return op;
 }

@@ -54,6 +54,10 @@ double angle_at(const Point& a, const Point& b, const Point& c) {  // at a, in (
   return std::atan2(u.cross(w).norm(), u.dot(w));
 }
 
+double smallest_angle(const Point& a, const Point& b, const Point& c) {
+  return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
+}
+
 // Finishes the band the way CGAL's valence-driven flips do not: an edge inside the band whose
 // two opposite angles add up to more than pi is flipped (the Delaunay criterion, which
 // maximises the smallest angle of a planar pair), where the pair is nearly flat (within 20
@@ -80,6 +84,10 @@ void delaunay_flips(Mesh& mesh, const EdgeMap& constrained, const FaceMap& in_re
       const Vec3 m1 = (to_vec(pd) - to_vec(pc)).cross(to_vec(pa) - to_vec(pc));
       const Vec3 m2 = (to_vec(pc) - to_vec(pd)).cross(to_vec(pb) - to_vec(pd));
       if (!(m1.dot(n1 + n2) > 0.0 && m2.dot(n1 + n2) > 0.0)) continue;
+      // ... and be better shaped than the old one (a flat new triangle never is).
+      if (std::min(smallest_angle(pc, pd, pa), smallest_angle(pd, pc, pb)) <=
+          std::min(smallest_angle(pa, pb, pc), smallest_angle(pb, pa, pd)))
+        continue;
       CGAL::Euler::flip_edge(h, mesh);
       ++flips;
     }
@@ -87,9 +95,6 @@ void delaunay_flips(Mesh& mesh, const EdgeMap& constrained, const FaceMap& in_re
   }
 }
 
-double smallest_angle(const Point& a, const Point& b, const Point& c) {
-  return std::min({angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)});
-}
 
 Vec3 normal_of(const Point& a, const Point& b, const Point& c) {
   return (to_vec(b) - to_vec(a)).cross(to_vec(c) - to_vec(a));

@@ -293,6 +293,32 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   result.band_after = r.after;
 }
 
+// An end of the curve within `fraction` of its face's mean edge length from the open boundary
+// is put on the boundary (the surgeon drew to the rim): the closest point of the nearest
+// boundary edge. Cost O(boundary edges).
+void snap_end_to_boundary(const SurfaceMesh& mesh, double fraction, SurfacePoint& p) {
+  const auto fv = mesh.face_vertices(p.face);
+  double spacing = 0.0;
+  for (int k = 0; k < 3; ++k) spacing += (mesh.position(fv[(k + 1) % 3]) - mesh.position(fv[k])).norm() / 3.0;
+  double best = fraction * spacing;
+  for (std::size_t h = 0; h < 3 * mesh.num_faces(); ++h) {
+    if (mesh.twin(HalfedgeId(h)).valid()) continue;
+    const Vec3& a = mesh.position(mesh.from_vertex(HalfedgeId(h)));
+    const Vec3& b = mesh.position(mesh.to_vertex(HalfedgeId(h)));
+    const Vec3 d = b - a;
+    const double t = std::clamp((p.position - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const double dist = (p.position - (a + t * d)).norm();
+    if (!(dist < best)) continue;
+    best = dist;
+    const int k = static_cast<int>(h % 3);
+    p.face = SurfaceMesh::face(HalfedgeId(h));
+    p.bary = Eigen::Vector3d::Zero();
+    p.bary[k] = 1.0 - t;
+    p.bary[(k + 1) % 3] = t;
+    p.position = a + t * d;
+  }
+}
+
 }  // namespace
 
 IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
@@ -304,6 +330,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     throw InvalidArgument("sliver_fraction must be in (0, 0.5)");
   if (!(params.max_distance > 0.0)) throw InvalidArgument("max_distance must be > 0");
   if (!(params.target_edge_length >= 0.0)) throw InvalidArgument("target_edge_length must be >= 0");
+  if (!(params.end_snap >= 0.0 && params.end_snap <= 0.5))
+    throw InvalidArgument("end_snap must be in [0, 0.5]");
   if (!(params.band_width > 0.0 && params.band_width <= 20.0))
     throw InvalidArgument("band_width must be in (0, 20] target edge lengths");
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
@@ -322,6 +350,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
                             detail::point_text(points[i]) + " is off the surface: " +
                             std::to_string(sp.back().distance) + " mm away (limit " +
                             std::to_string(params.max_distance) + " mm)");
+    if (params.mode == IncisionMode::CutThroughFaces && (i == 0 || i + 1 == points.size()))
+      snap_end_to_boundary(mesh, params.end_snap, sp.back());
     pe.push_back(detail::point_event(mesh, sp.back(), snap_fraction));
     if (params.mode == IncisionMode::SnapToEdges) {
       // Nearest corner of the face.

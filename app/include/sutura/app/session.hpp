@@ -244,8 +244,6 @@ struct JoinOp {
   /// Where the joined shape starts (`placement`: "mean" or "onto_b"); held vertices (any
   /// fixed translation) are passed on by the replay.
   engine::SuturePlacement placement = engine::SuturePlacement::Mean;
-  /// Remesh the band around the seams afterwards (session format 2; version 1: false).
-  bool remesh = true;
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
@@ -256,7 +254,7 @@ struct PatchOp {
   engine::Vec3 end = engine::Vec3::Zero();
   engine::PatchPlanParams params;
   engine::ShellMaterial material;
-  /// Remesh the band around the seams afterwards (session format 2; version 1: false).
+  /// Remesh the host's side of the seams afterwards (session format 2; version 1: false).
   bool remesh = true;
 };
 
@@ -271,8 +269,20 @@ struct ResectOp {
   /// Anastomosis: the loops' first vertices are the ones nearest this point (default: the
   /// point of each loop farthest along +z), so the two ends are sutured without a twist.
   std::optional<engine::Vec3> align;
-  /// Remesh the band around the anastomosis afterwards (session format 2; version 1: false).
-  bool remesh = true;
+};
+
+/// Remeshes a region of an object (engine::remesh): its sutures, material borders, open
+/// boundaries and lips kept as polylines, vertices with a fixed DOF or a point load kept in
+/// place; state and rest shape carried across (docs/remeshing.md).
+struct RemeshOp {
+  std::string object;
+  /// The region: faces with a corner within `radius` mm of this polyline (one point: of the
+  /// point); empty = the whole object.
+  std::vector<engine::Vec3> near;
+  double radius = 0.0;
+  double target_edge_length = 0.0;  ///< mm; 0 = the region's mean edge length
+  double grading = 1.0;             ///< >= 1: finest at `near`, growing by this per band
+  int iterations = 3;
 };
 
 /// Cross-section of an object by a plane, before and after, recorded under `name`.
@@ -294,7 +304,7 @@ struct RedoOp {};
 using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
                         SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
-                        MeasureOp, UndoOp, RedoOp>;
+                        RemeshOp, MeasureOp, UndoOp, RedoOp>;
 
 /// One parsed action with where it came from.
 struct Action {

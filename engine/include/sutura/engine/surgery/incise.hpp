@@ -32,6 +32,10 @@ struct IncisionParams {
   double sliver_fraction = 0.2;
   /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
   double max_distance = 1.0;
+  /// Cut-through: a first or last point closer to the open boundary than this fraction of the
+  /// local edge length is put on the boundary (drawn to the rim: the cut opens the boundary
+  /// loop instead of leaving a sliver between its end and the rim). In [0, 0.5].
+  double end_snap = 0.25;
   /// Cut-through only: remesh a band around the traced cut before opening it (remesh.hpp), the
   /// cut's edges kept as a constrained polyline, so the lips get well-shaped triangles while
   /// their vertices stay on the trace. Off: the raw trace (exact, thin triangles included).
