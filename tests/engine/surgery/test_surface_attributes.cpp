@@ -121,30 +121,31 @@ void expect_carried(const Fixture& before, const SurfaceMesh& mesh, const Surfac
     }
 }
 
+// The fixture after a slit across its tube, over the rings of its incision mark; `r` is the
+// incision.
+Fixture slit(const Fixture& fx, IncisionResult& r) {
+  r = incise(fx.mesh, {Vec3(3.0, 0.0, 12.2), Vec3(2.121, 2.121, 14.9), Vec3(0.0, 3.0, 17.7)});
+  Fixture out = fx;
+  apply_edit(out.mesh, out.a, r.mesh, r.maps);
+  return out;
+}
+
 TEST(SurfaceAttributes, AnIncisionCarriesEveryChannel) {
-  Fixture fx;
-  const IncisionResult r =
-      incise(fx.mesh, {Vec3(3.0, 0.0, 12.2), Vec3(2.121, 2.121, 14.9), Vec3(0.0, 3.0, 17.7)});
-  SurfaceMesh mesh = fx.mesh;
-  SurfaceAttributes a = fx.a;
-  apply_edit(mesh, a, r.mesh, r.maps);
-  expect_carried(fx, mesh, a, r.maps);
-  EXPECT_EQ(a.marks.incisions.size(), 1u);  // the old mark follows its vertices
-  EXPECT_EQ(a.applied_loads.nodal.size(), 1u);
-  EXPECT_EQ(a.pending_loads.nodal.size(), 1u);
+  const Fixture fx;
+  IncisionResult r;
+  const Fixture cut = slit(fx, r);
+  expect_carried(fx, cut.mesh, cut.a, r.maps);
+  EXPECT_EQ(cut.a.marks.incisions.size(), 1u);  // the old mark follows its vertices
+  EXPECT_EQ(cut.a.applied_loads.nodal.size(), 1u);
+  EXPECT_EQ(cut.a.pending_loads.nodal.size(), 1u);
 }
 
 TEST(SurfaceAttributes, AJoinCarriesEveryChannelAndMergesVelocities) {
-  Fixture fx;
-  const IncisionResult cut =
-      incise(fx.mesh, {Vec3(3.0, 0.0, 12.2), Vec3(2.121, 2.121, 14.9), Vec3(0.0, 3.0, 17.7)});
-  SurfaceMesh mesh = fx.mesh;
-  SurfaceAttributes a = fx.a;
-  apply_edit(mesh, a, cut.mesh, cut.maps);
+  IncisionResult cut;
+  const Fixture cut_fx = slit(Fixture{}, cut);
+  SurfaceMesh mesh = cut_fx.mesh;
+  SurfaceAttributes a = cut_fx.a;
   // Re-join the slit (left lip against the right lip, in boundary direction).
-  Fixture cut_fx;
-  cut_fx.mesh = mesh;
-  cut_fx.a = a;
   const BoundaryChain left{cut.left, false};
   const BoundaryChain right{{cut.right.rbegin(), cut.right.rend()}, false};
   const JoinResult j = join(mesh, {{left, right}});
