@@ -53,8 +53,9 @@ InciseOp parse_incise(Fields& f) {
   op.points = points(f, "points");
   if (op.points.size() < 2) f.fail("points", "an incision needs at least 2 points");
   op.params.mode = engine::parse_incision_mode(f.optional_choice("mode", "cut", {"cut", "snap"}));
-  op.params.sliver_fraction = f.optional_positive("sliver_fraction", op.params.sliver_fraction);
-  if (op.params.sliver_fraction >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
+  // The former sliver guard: still read and checked, so sessions that set it load, but the
+  // cut's vertices now lie on the curve (docs/session-format.md).
+  if (f.optional_positive("sliver_fraction", 0.2) >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
   // Version 1 sessions were recorded before the band remesh existed: they keep the raw trace.
   op.params.remesh = f.optional_bool("remesh", f.format_version() >= 2);

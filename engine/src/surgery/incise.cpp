@@ -326,8 +326,6 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   if (points.size() < 2)
     throw InvalidArgument("an incision needs at least 2 points, got " +
                           std::to_string(points.size()));
-  if (!(params.sliver_fraction > 0.0 && params.sliver_fraction < 0.5))
-    throw InvalidArgument("sliver_fraction must be in (0, 0.5)");
   if (!(params.max_distance > 0.0)) throw InvalidArgument("max_distance must be > 0");
   if (!(params.target_edge_length >= 0.0)) throw InvalidArgument("target_edge_length must be >= 0");
   if (!(params.end_snap >= 0.0 && params.end_snap <= 0.5))
@@ -337,7 +335,7 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
     throw InvalidArgument("constrained_vertices: one flag per vertex");
   // Crossings are inserted where the curve is, with or without the band remesh (which removes
-  // the slivers): snapping them to vertices by sliver_fraction moved the lips off the curve,
+  // the slivers): snapping them to vertices by a sliver fraction (before 2026-12-03) moved the lips off the curve,
   // and with dense points made the cut revisit a vertex (a false self-crossing).
   const double snap_fraction = kExactCrossing;
 

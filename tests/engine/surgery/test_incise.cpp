@@ -156,9 +156,8 @@ TEST(Incise, RejectsBadRequestsWithClearMessages) {
   EXPECT_NE(message({Vec3(2, -2, 0), Vec3(10, 5, 0), Vec3(18, -2, 0)}).find("boundary"),
             std::string::npos);
   IncisionParams bad;
-  bad.sliver_fraction = 0.7;
-  EXPECT_NE(message({Vec3(5, 0, 0), Vec3(15, 0, 0)}, bad).find("sliver_fraction"),
-            std::string::npos);
+  bad.end_snap = 0.7;
+  EXPECT_NE(message({Vec3(5, 0, 0), Vec3(15, 0, 0)}, bad).find("end_snap"), std::string::npos);
 }
 
 TEST(Incise, AShortCutIsASlitOfItsExactLength) {

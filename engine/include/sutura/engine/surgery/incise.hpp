@@ -26,10 +26,6 @@ IncisionMode parse_incision_mode(const std::string& name);
 
 struct IncisionParams {
   IncisionMode mode = IncisionMode::CutThroughFaces;
-  /// Checked to be in (0, 0.5), otherwise unused: the former sliver guard (crossings this
-  /// close to an edge end snapped to the vertex) moved the lips off the curve and, with dense
-  /// points, made the cut revisit vertices. Kept so that sessions that set it still load.
-  double sliver_fraction = 0.2;
   /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
   double max_distance = 1.0;
   /// Cut-through: a first or last point closer to the open boundary than this fraction of the
