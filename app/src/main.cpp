@@ -1,6 +1,7 @@
 // sutura — command-line entry point. Subcommands:
 //   replay SESSION --out DIR   run a recorded planning session headlessly
 //   info MESH                  load a mesh file and print its topology summary
+//   distance A B               Hausdorff distance between two mesh files
 //   generate arch --out DIR    write the synthetic infant aortic arch and its landmarks
 //   gui [SESSION]              the interactive planning window (records a session)
 // Exit codes: 0 success, 1 the session or mesh failed (message on stderr), other non-zero
@@ -77,6 +78,17 @@ int run_info(const std::string& mesh_file, double weld_tolerance) {
   return report.ok() ? 0 : 1;
 }
 
+// Hausdorff distance between two mesh files, as JSON on stdout.
+int run_distance(const std::string& a_file, const std::string& b_file, double spacing) {
+  using namespace sutura;
+  const engine::SurfaceMesh a = engine::load_mesh(a_file), b = engine::load_mesh(b_file);
+  nlohmann::json j = app::hausdorff_json(engine::hausdorff_distance(a, b, spacing));
+  j["a"] = a_file;
+  j["b"] = b_file;
+  std::cout << j.dump(2) << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,6 +122,16 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.01));
 
+  std::string distance_a, distance_b;
+  double spacing = 0.0;
+  auto* distance = app.add_subcommand(
+      "distance", "Hausdorff distance between two mesh files (one-sided both ways, symmetric)");
+  distance->add_option("a", distance_a, "Mesh file A")->required();
+  distance->add_option("b", distance_b, "Mesh file B")->required();
+  distance->add_option("--spacing", spacing,
+                       "mm between samples on each surface (default: half the smaller mean edge)")
+      ->check(CLI::PositiveNumber);
+
   sutura::app::GenerateArchOptions arch_options;
   auto* arch = sutura::app::add_generate_command(app, arch_options);
   sutura::ui::GuiOptions gui_options;
@@ -119,6 +141,7 @@ int main(int argc, char** argv) {
   try {
     if (*replay) return run_replay(session_file, out_dir, quiet, threads);
     if (*info) return run_info(mesh_file, weld);
+    if (*distance) return run_distance(distance_a, distance_b, spacing);
     if (*arch) return sutura::app::run_generate_arch(arch_options);
     if (*gui) return sutura::ui::run_gui(gui_options);
   } catch (const std::exception& e) {

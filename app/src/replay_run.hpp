@@ -75,6 +75,7 @@ struct Run {
   json execute(const ResectOp& op);
   json execute(const RemeshOp& op);
   json execute(const MeasureOp& op);
+  json execute(const DistanceOp& op);
   json execute(const UndoOp& op);
   json execute(const RedoOp& op);
   /// Simulate with rest-shape relaxation of the objects' pending sutures.

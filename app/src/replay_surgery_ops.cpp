@@ -311,6 +311,16 @@ json Run::execute(const RemeshOp& op) {
   return j;
 }
 
+json Run::execute(const DistanceOp& op) {
+  const engine::HausdorffDistance h =
+      engine::hausdorff_distance(object(op.a).mesh, object(op.b).mesh, op.spacing);
+  json j = hausdorff_json(h);
+  j["a"] = op.a;
+  j["b"] = op.b;
+  measurements[op.name] = j;
+  return {{"measurement", op.name}, {"values", j}};
+}
+
 json Run::execute(const MeasureOp& op) {
   const SceneObject& obj = object(op.object);
   json j = {{"object", op.object}};

@@ -32,6 +32,13 @@ nlohmann::json mesh_quality_json(const engine::MeshQuality& q) {
           {"max_edge_mm", q.max_edge}};
 }
 
+nlohmann::json hausdorff_json(const engine::HausdorffDistance& h) {
+  return {{"a_to_b_mm", h.a_to_b},       {"b_to_a_mm", h.b_to_a},
+          {"symmetric_mm", h.symmetric}, {"mean_a_to_b_mm", h.mean_a_to_b},
+          {"mean_b_to_a_mm", h.mean_b_to_a}, {"samples_a", h.samples_a},
+          {"samples_b", h.samples_b}};
+}
+
 nlohmann::json object_summary(const SceneObject& object) {
   const auto& m = object.mesh;
   const auto box = m.bounds();

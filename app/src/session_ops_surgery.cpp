@@ -174,6 +174,15 @@ MeasureOp parse_measure(Fields& f) {
 
 }  // namespace
 
+DistanceOp parse_distance(Fields& f) {
+  DistanceOp op;
+  op.name = f.required_string("name");
+  op.a = f.required_string("a");
+  op.b = f.required_string("b");
+  if (f.has("spacing")) op.spacing = f.optional_positive("spacing", 1.0);
+  return op;
+}
+
 RemeshOp parse_remesh(Fields& f) {
   RemeshOp op;
   op.object = object_name(f);
@@ -201,6 +210,7 @@ const std::vector<OpParser>& surgery_op_parsers() {
       {"resect", [](Fields& f, const std::filesystem::path&) -> Op { return parse_resect(f); }},
       {"remesh", [](Fields& f, const std::filesystem::path&) -> Op { return parse_remesh(f); }},
       {"measure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_measure(f); }},
+      {"distance", [](Fields& f, const std::filesystem::path&) -> Op { return parse_distance(f); }},
       {"undo", [](Fields&, const std::filesystem::path&) -> Op { return UndoOp{}; }},
       {"redo", [](Fields&, const std::filesystem::path&) -> Op { return RedoOp{}; }},
   };

@@ -312,3 +312,23 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherAnIncisionIsRemeshed) {
 }
 
 }  // namespace
+
+namespace {
+
+// The distance op records the Hausdorff distance between two objects for `check`: two tubes
+// 0.1 mm apart in radius (closed form: test_hausdorff.cpp).
+TEST(SurgeryOps, DistanceOpRecordsTheHausdorffDistanceForCheck) {
+  const std::string text =
+      kHeader2 + kTube +
+      "{\"op\": \"generate\", \"object\": \"u\", \"shape\": \"tube\", \"radius\": 4.1, \"length\": 20, "
+      "\"segments_around\": 24, \"segments_along\": 20}\n"
+      "{\"op\": \"distance\", \"name\": \"d\", \"a\": \"t\", \"b\": \"u\", \"spacing\": 0.2}\n"
+      "{\"op\": \"check\", \"measurement\": \"d\", \"quantity\": \"symmetric_mm\", \"value\": 0.1, "
+      "\"abs_tol\": 1e-9}\n";
+  const ReplayResult r = run(text, "distance");
+  EXPECT_EQ(r.report["status"], "ok");
+  std::string e = failure(kHeader2 + kTube + "{\"op\": \"distance\", \"name\": \"d\", \"a\": \"t\", \"b\": \"x\"}\n", 3);
+  EXPECT_NE(e.find("'x'"), std::string::npos) << e;
+}
+
+}  // namespace

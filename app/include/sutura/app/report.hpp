@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sutura/app/workspace.hpp"
+#include "sutura/engine/measure/hausdorff.hpp"
 #include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::app {
@@ -21,5 +22,8 @@ nlohmann::json object_summary(const SceneObject& object);
 /// Face count, smallest angle, 5th-percentile smallest angle (degrees) and edge-length range
 /// (mm) of a set of faces (engine::mesh_quality).
 nlohmann::json mesh_quality_json(const engine::MeshQuality& q);
+
+/// The one-sided, symmetric and mean distances (mm) and sample counts.
+nlohmann::json hausdorff_json(const engine::HausdorffDistance& h);
 
 }  // namespace sutura::app

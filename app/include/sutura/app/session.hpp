@@ -297,6 +297,14 @@ struct MeasureOp {
   double max_radius = 0.0;  ///< mm; 0 = unlimited
 };
 
+/// Hausdorff distance between two objects' current shapes (engine::hausdorff_distance),
+/// recorded under `name` for `check` (a_to_b_mm, b_to_a_mm, symmetric_mm, ...).
+struct DistanceOp {
+  std::string name;
+  std::string a, b;      ///< object names
+  double spacing = 0.0;  ///< mm between samples; 0 = half the smaller mean edge length
+};
+
 /// Undo / redo of the last workspace change (edits, constraints, runs).
 struct UndoOp {};
 struct RedoOp {};
@@ -304,7 +312,7 @@ struct RedoOp {};
 using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
                         SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
-                        RemeshOp, MeasureOp, UndoOp, RedoOp>;
+                        RemeshOp, MeasureOp, DistanceOp, UndoOp, RedoOp>;
 
 /// One parsed action with where it came from.
 struct Action {
