@@ -243,7 +243,7 @@ TEST(Incise, RandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   int cut = 0, refused = 0, below_20 = 0;
   double worst_angle = 180.0, worst_lip = 0.0;
-  const int curves = 300;
+  const int curves = 1000;
   for (int n = 0; n < curves; ++n) {
     // A walk over the surface from a random face, its heading turning smoothly.
     const FaceId f0(static_cast<std::int32_t>(unit(rng) * arch.num_faces()));
