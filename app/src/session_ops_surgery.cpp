@@ -119,6 +119,9 @@ PatchOp parse_patch(Fields& f) {
   if (op.params.length < 0.0) f.fail("length", "must be >= 0 (0 = the incision's length)");
   op.params.edge_length = f.optional_number("edge_length", 0.0);
   if (op.params.edge_length < 0.0) f.fail("edge_length", "must be >= 0 (0 = the lips' spacing)");
+  // Since format 2, the lips' spacing is not taken below a fifth of the width (version 1
+  // sessions keep their patches as they were cut).
+  if (f.format_version() >= 2) op.params.min_edge_length = op.params.width / 5.0;
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
   op.material = default_patch_material();
   if (auto m = f.optional_object("material")) op.material = parse_material_object(*m, op.material);

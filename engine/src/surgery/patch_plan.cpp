@@ -31,6 +31,7 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
   if (!(params.width > 0)) throw InvalidArgument("patch width must be > 0");
   if (!(params.length >= 0)) throw InvalidArgument("patch length must be >= 0");
   if (!(params.edge_length >= 0)) throw InvalidArgument("patch edge_length must be >= 0");
+  if (!(params.min_edge_length >= 0)) throw InvalidArgument("patch min_edge_length must be >= 0");
   PatchPlan plan;
   // The lips: the arc from start to end and the arc back (shortest candidates; for a slit they
   // are the only two arcs between the shared ends).
@@ -56,9 +57,11 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
   pp.shape = params.shape;
   pp.length = params.length > 0 ? params.length : plan.incision_length;
   pp.width = params.width;
-  pp.target_edge_length = params.edge_length > 0
-                              ? params.edge_length
-                              : 0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right));
+  pp.target_edge_length =
+      params.edge_length > 0
+          ? params.edge_length
+          : std::max(params.min_edge_length,
+                     0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right)));
   plan.rest = make_patch(pp);
 
   // Initial placement: a tent over the closed slit. Along the cut the patch follows the lips;

@@ -176,6 +176,24 @@ TEST(Join, SlitReJoinedGivesTheOriginalTopologyAndPositions) {
   EXPECT_EQ(r.mesh.faces(), m.faces());
 }
 
+// A patch is cut at the lips' spacing, but no finer than min_edge_length: a patch far finer
+// than its width is laid out over the slit as many thin rows, one of which collapses in the
+// relaxation (the fine arch at 0.41 mm with a 4 mm patch).
+TEST(Join, APatchIsCutAtTheLipsSpacingButNoFinerThanItsMinimum) {
+  const SurfaceMesh t = make_tube({4.0, 20.0, 48, 40});  // 0.5 mm edges
+  const IncisionResult cut = incise(t, {Vec3(4, 0, 6.2), Vec3(4, 0, 13.8)});
+  PatchPlanParams pp;
+  pp.width = 4.0;
+  const PatchPlan at_lips = plan_patch(cut.mesh, Vec3(4, 0, 6.2), Vec3(4, 0, 13.8), pp);
+  pp.min_edge_length = 0.8;
+  const PatchPlan coarser = plan_patch(cut.mesh, Vec3(4, 0, 6.2), Vec3(4, 0, 13.8), pp);
+  EXPECT_LT(at_lips.rest.mean_edge_length(), 0.65);
+  EXPECT_GT(coarser.rest.mean_edge_length(), 0.7);
+  EXPECT_LT(coarser.rest.num_faces(), at_lips.rest.num_faces() / 2);
+  pp.min_edge_length = -1.0;
+  EXPECT_THROW(plan_patch(cut.mesh, Vec3(4, 0, 6.2), Vec3(4, 0, 13.8), pp), InvalidArgument);
+}
+
 TEST(Join, PatchCornerMeetingTwoLipsAndAnotherChainIsAOneToThreeMapping) {
   // Open a tube end with an incision, insert a triangular gusset, then suture the widened end
   // loop to another tube's end: the gusset's base corners carry three rest positions.
