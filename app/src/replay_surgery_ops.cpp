@@ -38,6 +38,19 @@ std::vector<std::pair<engine::VertexId, engine::VertexId>> feature_edges(const S
   return edges;
 }
 
+// Remeshes obj with `p`, its features and held vertices added to p's constraints, and carries
+// everything across. Returns the report of the remeshed region.
+json remesh_object(SceneObject& obj, engine::RemeshParams p) {
+  const auto features = feature_edges(obj);
+  p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
+  p.constrained_vertices = kept_vertices(obj);
+  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
+  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  return {{"target_edge_length_mm", p.target_edge_length},
+          {"before", mesh_quality_json(r.before)},
+          {"after", mesh_quality_json(r.after)}};
+}
+
 
 
 // Keep memory bounded on long GUI sessions: each entry is a copy of every object.
@@ -221,14 +234,7 @@ json Run::execute(const PatchOp& op) {
     std::erase_if(*p.region, [&](engine::FaceId f) {
       return obj.sim.face_material[f.index()] == patch_material;
     });
-    const auto features = feature_edges(obj);
-    p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
-    p.constrained_vertices = kept_vertices(obj);
-    const engine::RemeshResult rr = engine::remesh(obj.mesh, p);
-    engine::apply_edit(obj.mesh, obj.sim, rr.mesh, rr.maps);
-    remeshed = {{"target_edge_length_mm", p.target_edge_length},
-                {"before", mesh_quality_json(rr.before)},
-                {"after", mesh_quality_json(rr.after)}};
+    remeshed = remesh_object(obj, std::move(p));
   }
   json sutures = json::array();
   for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
@@ -299,14 +305,8 @@ json Run::execute(const RemeshOp& op) {
   p.grading = op.grading;
   if (op.grading > 1.0) p.grading_curve = op.near;
   p.iterations = op.iterations;
-  p.constrained_edges = feature_edges(obj);
-  p.constrained_vertices = kept_vertices(obj);
-  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
-  engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
-  json j = {{"object", op.object},
-            {"target_edge_length_mm", p.target_edge_length},
-            {"before", mesh_quality_json(r.before)},
-            {"after", mesh_quality_json(r.after)}};
+  json j = remesh_object(obj, std::move(p));
+  j["object"] = op.object;
   j["mesh"] = mesh_counts(obj);
   return j;
 }

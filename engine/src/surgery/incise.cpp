@@ -242,6 +242,7 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
                  std::vector<VertexId>& c, IncisionResult& result) {
   const double L = params.target_edge_length > 0.0 ? params.target_edge_length
                                                    : mean_edge_length(mesh, host_faces);
+  // Not band_around: the cut is open even where its two ends happen to be adjacent.
   std::vector<Vec3> trace;
   for (const VertexId v : c) trace.push_back(refined.position(v));
   RemeshParams rp;
@@ -295,7 +296,7 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
 
 // An end of the curve within `fraction` of its face's mean edge length from the open boundary
 // is put on the boundary (the surgeon drew to the rim): the closest point of the nearest
-// boundary edge. Cost O(boundary edges).
+// boundary edge. Cost O(F) (the boundary half-edges are found by scanning all of them).
 void snap_end_to_boundary(const SurfaceMesh& mesh, double fraction, SurfacePoint& p) {
   const auto fv = mesh.face_vertices(p.face);
   double spacing = 0.0;
@@ -335,9 +336,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
     throw InvalidArgument("constrained_vertices: one flag per vertex");
   // Crossings are inserted where the curve is, with or without the band remesh (which removes
-  // the slivers): snapping them to vertices by a sliver fraction (before 2026-12-03) moved the lips off the curve,
+  // the slivers): snapping them to vertices by a sliver fraction moved the lips off the curve,
   // and with dense points made the cut revisit a vertex (a false self-crossing).
-  const double snap_fraction = kExactCrossing;
 
   std::vector<SurfacePoint> sp;
   std::vector<PathEvent> pe;
@@ -350,7 +350,7 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
                             std::to_string(params.max_distance) + " mm)");
     if (params.mode == IncisionMode::CutThroughFaces && (i == 0 || i + 1 == points.size()))
       snap_end_to_boundary(mesh, params.end_snap, sp.back());
-    pe.push_back(detail::point_event(mesh, sp.back(), snap_fraction));
+    pe.push_back(detail::point_event(mesh, sp.back(), kExactCrossing));
     if (params.mode == IncisionMode::SnapToEdges) {
       // Nearest corner of the face.
       const auto fv = mesh.face_vertices(sp.back().face);
@@ -385,7 +385,7 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     for (std::size_t i = 1; i < points.size(); ++i) {
       if (!pe[i - 1].same_as(pe[i]))
         for (const PathEvent& e :
-             detail::trace_between(mesh, sp[i - 1], pe[i - 1], sp[i], pe[i], snap_fraction,
+             detail::trace_between(mesh, sp[i - 1], pe[i - 1], sp[i], pe[i], kExactCrossing,
                                    int(i)))
           push(e);
       push(pe[i]);

@@ -116,6 +116,7 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   if (!(std::isfinite(L) && L > 0.0))
     throw InvalidArgument("target_edge_length must be a finite length > 0 mm, got " +
                           std::to_string(L));
+  const double host = mean_edge_length(mesh, region_faces);  // the region's own spacing
   {
     Eigen::AlignedBox3d box;
     for (const FaceId f : region_faces)
@@ -127,7 +128,6 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
                             " mm across)");
     // Bound the work by the input: a target far below the region's spacing would make
     // (extent / L)^2 faces.
-    const double host = mean_edge_length(mesh, region_faces);
     const double growth = (host / L) * (host / L) * double(region_faces.size());
     if (growth > 2.0e6)
       throw InvalidArgument("target_edge_length " + std::to_string(L) +
@@ -179,7 +179,6 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
     if (degree[v] != 0 && degree[v] != 2) in.constrained_vertices[v] = true;
 
   // Bands: coarsest first. Band i has edge length L g^i and reaches 2 L g^i beyond band i-1.
-  const double host = mean_edge_length(mesh, region_faces);
   if (params.grading > 1.0 && !params.grading_curve.empty() && host > L) {
     std::vector<detail::RemeshBand> bands;
     double length = L, reach = 0.0;

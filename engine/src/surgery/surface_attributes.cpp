@@ -115,13 +115,6 @@ Eigen::VectorXd carry_velocity(const EditMaps& maps, const Eigen::VectorXd& old,
   return out;
 }
 
-std::vector<VertexId> offset_chain(const std::vector<VertexId>& chain, std::size_t offset) {
-  std::vector<VertexId> out;
-  out.reserve(chain.size());
-  for (const auto v : chain) out.emplace_back(v.index() + offset);
-  return out;
-}
-
 }  // namespace
 
 SurfaceAttributes attributes_at_rest(const SurfaceMesh& mesh) {

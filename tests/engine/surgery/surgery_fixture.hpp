@@ -9,6 +9,7 @@
 #include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/sim/shell_system.hpp"
 #include "sutura/engine/surgery/carry.hpp"
+#include "sutura/engine/surgery/incise.hpp"
 #include "sutura/engine/surgery/surface_attributes.hpp"
 
 namespace sutura::engine::testing {
@@ -23,6 +24,13 @@ struct Body : SurfaceAttributes {
     apply_edit(mesh, *this, new_mesh, maps);
   }
 };
+
+// Incision parameters of the paper's prototype: snapped to mesh edges.
+inline IncisionParams snapped() {
+  IncisionParams p;
+  p.mode = IncisionMode::SnapToEdges;
+  return p;
+}
 
 inline ShellMaterial soft_material(double nu = 0.3) {
   ShellMaterial m;

@@ -67,7 +67,7 @@ double farthest_point_from_cut(const SurfaceMesh& m, const std::vector<Vec3>& po
 TEST(Incise, SnapSlitInsideStripMakesOneNewLoopWithSharedEnds) {
   const SurfaceMesh m = strip();
   const IncisionResult r =
-      incise(m, {Vec3(5, 0, 0), Vec3(15, 0, 0)}, {IncisionMode::SnapToEdges});
+      incise(m, {Vec3(5, 0, 0), Vec3(15, 0, 0)}, testing::snapped());
   EXPECT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
   EXPECT_EQ(r.mesh.boundary_loops().size(), 2u);
   ASSERT_EQ(r.left.size(), r.right.size());
@@ -128,7 +128,7 @@ TEST(Incise, FromTheBoundaryOpensTheLoop) {
 
 TEST(Incise, EndToEndAlongATubeOpensItIntoASheet) {
   const SurfaceMesh tube = make_tube({4.0, 20.0, 24, 20});
-  const IncisionResult r = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 20)}, {IncisionMode::SnapToEdges});
+  const IncisionResult r = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 20)}, testing::snapped());
   ASSERT_TRUE(r.mesh.validate().ok());
   EXPECT_EQ(r.mesh.boundary_loops().size(), 1u);
   EXPECT_EQ(r.mesh.euler_characteristic(), 1);  // a disc
@@ -146,7 +146,7 @@ TEST(Incise, RejectsBadRequestsWithClearMessages) {
   };
   EXPECT_NE(message({Vec3(5, 0, 0)}).find("at least 2 points"), std::string::npos);
   EXPECT_NE(message({Vec3(5, 0, 0), Vec3(15, 0, 3)}).find("off the surface"), std::string::npos);
-  EXPECT_NE(message({Vec3(5, 0, 0), Vec3(5.1, 0, 0)}, {IncisionMode::SnapToEdges})
+  EXPECT_NE(message({Vec3(5, 0, 0), Vec3(5.1, 0, 0)}, testing::snapped())
                 .find("shorter than one mesh edge"),
             std::string::npos);
   EXPECT_NE(message({Vec3(5.3, 0.2, 0), Vec3(5.3, 0.2, 0)}).find("no length"), std::string::npos);

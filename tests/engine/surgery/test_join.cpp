@@ -164,7 +164,7 @@ TEST(Join, MapsCarryARestStateThatIsStressFreeOnlyAfterCongruentY0) {
 
 TEST(Join, SlitReJoinedGivesTheOriginalTopologyAndPositions) {
   const SurfaceMesh m = make_tube({4.0, 20.0, 24, 20});
-  const IncisionResult cut = incise(m, {Vec3(4, 0, 5), Vec3(0, 4, 14)}, {IncisionMode::SnapToEdges});
+  const IncisionResult cut = incise(m, {Vec3(4, 0, 5), Vec3(0, 4, 14)}, testing::snapped());
   BoundaryChain left{cut.left, false};
   BoundaryChain right{{cut.right.rbegin(), cut.right.rend()}, false};
   const JoinResult r = join(cut.mesh, {{left, right}});
@@ -198,7 +198,7 @@ TEST(Join, PatchCornerMeetingTwoLipsAndAnotherChainIsAOneToThreeMapping) {
   // Open a tube end with an incision, insert a triangular gusset, then suture the widened end
   // loop to another tube's end: the gusset's base corners carry three rest positions.
   const SurfaceMesh t1 = make_tube({3.0, 10.0, 24, 10});
-  const IncisionResult cut = incise(t1, {Vec3(3, 0, 10), Vec3(3, 0, 5)}, {IncisionMode::SnapToEdges});
+  const IncisionResult cut = incise(t1, {Vec3(3, 0, 10), Vec3(3, 0, 5)}, testing::snapped());
   PatchPlanParams pp;
   pp.shape = PatchShape::Triangle;
   pp.width = 2.0;
@@ -309,7 +309,7 @@ TEST(Join, RejectsBadChains) {
 
 TEST(BoundaryChainSpec, ResolvesCoincidentLipsByViaPoint) {
   const SurfaceMesh tube = make_tube({4.0, 20.0, 24, 20});
-  const IncisionResult cut = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 10)}, {IncisionMode::SnapToEdges});
+  const IncisionResult cut = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 10)}, testing::snapped());
   ChainSpec s;
   s.from = Vec3(4, 0, 0);
   s.to = Vec3(4, 0, 10);

@@ -181,7 +181,7 @@ TEST(Relaxation, SlitOpenedUnderPressureAndReJoinedReturnsToTheIntactShape) {
 
   Body cut(make_tube({4.0, 20.0, 24, 20}));
   clamp_ends(cut);
-  const IncisionResult inc = incise(cut.mesh, {Vec3(4, 0, 6), Vec3(4, 0, 14)}, {IncisionMode::SnapToEdges});
+  const IncisionResult inc = incise(cut.mesh, {Vec3(4, 0, 6), Vec3(4, 0, 14)}, testing::snapped());
   cut.apply(inc.mesh, inc.maps);
   ASSERT_TRUE(solve(cut));
   // The slit gapes under pressure.

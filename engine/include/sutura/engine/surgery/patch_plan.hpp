@@ -14,10 +14,9 @@ struct PatchPlanParams {
   /// mm; 0 = the mean edge length of the lips, so both sides of the suture match, but not
   /// below `min_edge_length`.
   double edge_length = 0.0;
-  /// mm, >= 0: the finest spacing `edge_length` 0 may give. A patch cut much finer than its
-  /// width is laid out over the slit as many thin rows (compressed across by
-  /// 0.4 * lip spacing / half-width) and one of them collapses in the relaxation: measured on
-  /// the fine arch with the lips at 0.41 mm and a 4 mm patch (docs/remeshing.md).
+  /// mm, >= 0: the finest spacing `edge_length` 0 may give. Why: a patch cut much finer than
+  /// its width is laid out over the slit as many thin rows (compressed across by
+  /// 0.4 * lip spacing / half-width), and the relaxation can collapse one (docs/remeshing.md).
   double min_edge_length = 0.0;
   /// mm: the lips' end points must lie this close to the boundary.
   double max_distance = 1.0;
