@@ -14,6 +14,7 @@
 #include "sutura/engine/surgery/join.hpp"
 #include "sutura/engine/surgery/patch_plan.hpp"
 #include "sutura/engine/surgery/resect.hpp"
+#include "sutura/engine/surgery/seam_match.hpp"
 
 namespace sutura::app::detail {
 
@@ -39,19 +40,45 @@ std::vector<std::pair<engine::VertexId, engine::VertexId>> feature_edges(const S
 }
 
 // Remeshes obj with `p`, its features and held vertices added to p's constraints, and carries
-// everything across. Returns the report of the remeshed region.
-json remesh_object(SceneObject& obj, engine::RemeshParams p) {
+// everything across. Returns the report of the remeshed region; `maps` (when given) receives
+// the edit's maps.
+json remesh_object(SceneObject& obj, engine::RemeshParams p, engine::EditMaps* maps = nullptr) {
   const auto features = feature_edges(obj);
   p.constrained_edges.insert(p.constrained_edges.end(), features.begin(), features.end());
-  p.constrained_vertices = kept_vertices(obj);
-  const engine::RemeshResult r = engine::remesh(obj.mesh, p);
+  const std::vector<bool> kept = kept_vertices(obj);
+  if (p.constrained_vertices.empty()) p.constrained_vertices.assign(kept.size(), false);
+  for (std::size_t v = 0; v < kept.size(); ++v) p.constrained_vertices[v] = p.constrained_vertices[v] || kept[v];
+  engine::RemeshResult r = engine::remesh(obj.mesh, p);
   engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+  if (maps) *maps = std::move(r.maps);
   return {{"target_edge_length_mm", p.target_edge_length},
           {"before", mesh_quality_json(r.before)},
           {"after", mesh_quality_json(r.after)}};
 }
 
+// Constraints of a seam resampling: the object's held vertices and feature lines.
+engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length) {
+  engine::ResampleChainsParams p;
+  p.target_edge_length = target_edge_length;
+  p.constrained_vertices = kept_vertices(obj);
+  p.constrained_edges = feature_edges(obj);
+  return p;
+}
 
+json resample_json(const engine::ResampleChainsResult& r, double spacing) {
+  return {{"seam_spacing_mm", spacing},
+          {"before", mesh_quality_json(r.before)},
+          {"after", mesh_quality_json(r.after)}};
+}
+
+// Matches the seams of `pairs` on obj (engine::match_seams) and carries everything across;
+// the pairs come back as chains of the new mesh.
+json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs) {
+  const engine::MatchedSeams m = engine::match_seams(obj.mesh, pairs, seam_params(obj, 0.0));
+  engine::apply_edit(obj.mesh, obj.sim, m.edit.mesh, m.edit.maps);
+  pairs = m.pairs;
+  return resample_json(m.edit, *std::min_element(m.spacing.begin(), m.spacing.end()));
+}
 
 // Keep memory bounded on long GUI sessions: each entry is a copy of every object.
 constexpr std::size_t kMaxUndo = 64;
@@ -170,6 +197,8 @@ json Run::execute(const JoinOp& op) {
       throw std::runtime_error("suture " + std::to_string(i + 1) + ": " + e.what());
     }
   }
+  json seams;
+  if (op.remesh) seams = match_object_seams(obj, pairs);
   engine::JoinParams params;
   params.placement = op.placement;
   if (op.placement == engine::SuturePlacement::OntoB) {
@@ -199,6 +228,7 @@ json Run::execute(const JoinOp& op) {
             {"sutures", sutures},
             {"merged_vertices", r.merged.size()},
             {"displaced_vertices", r.displaced.size()}};
+  if (!seams.is_null()) j["remesh"] = seams;
   j["mesh"] = mesh_counts(obj);
   return j;
 }
@@ -206,16 +236,41 @@ json Run::execute(const JoinOp& op) {
 json Run::execute(const PatchOp& op) {
   remember();
   SceneObject& obj = object(op.object);
-  const engine::PatchPlan plan = engine::plan_patch(obj.mesh, op.start, op.end, op.params);
+  using SeamRemesh = PatchOp::SeamRemesh;
+  engine::PatchPlanParams params = op.params;
+  json remeshed;
+  if (op.remesh == SeamRemesh::Matched) {
+    // Each lip and the patch edge sutured to it get one count of equal segments at the
+    // patch's spacing: the lips are resampled here, the edges by plan_patch (flat, in the
+    // patch's rest shape), and the join pairs them one to one.
+    const engine::PatchPlan first = engine::plan_patch(obj.mesh, op.start, op.end, params);
+    auto segments = [&](const engine::BoundaryChain& lip, const engine::BoundaryChain& edge) {
+      const double mean =
+          0.5 * (engine::chain_length(obj.mesh, lip) + engine::chain_length(first.rest, edge));
+      return static_cast<int>(std::max(1L, std::lround(mean / first.edge_length)));
+    };
+    params.left_segments = segments(first.lip_left, first.edge_left);
+    params.right_segments = segments(first.lip_right, first.edge_right);
+    const engine::ResampleChainsResult r = engine::resample_chains(
+        obj.mesh,
+        {{first.lip_left, engine::equal_fractions(params.left_segments)},
+         {first.lip_right, engine::equal_fractions(params.right_segments)}},
+        seam_params(obj, first.edge_length));
+    engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
+    remeshed = resample_json(r, first.edge_length);
+  }
+  const engine::PatchPlan plan = engine::plan_patch(obj.mesh, op.start, op.end, params);
   const std::size_t host_faces = obj.mesh.num_faces();
   const std::size_t offset = engine::append_component(obj.mesh, obj.sim, plan.placed, plan.rest, op.material);
   auto shifted = [&](engine::BoundaryChain c) {
     for (auto& v : c.vertices) v = engine::VertexId(v.index() + offset);
     return c;
   };
+  engine::JoinParams join_params;
+  if (plan.matched) join_params.pairing = engine::JoinPairing::InOrder;
   const engine::JoinResult r =
       engine::join(obj.mesh, {{plan.lip_left, shifted(plan.edge_left)},
-                              {plan.lip_right, shifted(plan.edge_right)}});
+                              {plan.lip_right, shifted(plan.edge_right)}}, join_params);
   // The whole patch starts congruent with its placement (it is laid out curved, cut flat).
   std::vector<bool> patch_faces(r.mesh.num_faces(), false);
   for (std::size_t f = 0; f < r.maps.faces.size(); ++f)
@@ -223,12 +278,11 @@ json Run::execute(const PatchOp& op) {
   engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
   engine::start_relaxation(obj.mesh, obj.sim, r.merged, patch_faces);
   for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
-  json remeshed;
-  if (op.remesh) {
-    // The host's side of the seams: the pairing inserted vertices along the lips, next to
-    // existing ones, and the thin triangles it left could not stretch in the relaxation. The
-    // patch's own faces are kept: laid out narrow over the slit, far from their flat rest
-    // shape, their strain varies too fast across the band to be resampled (docs/remeshing.md).
+  if (op.remesh == SeamRemesh::HostAfterJoin) {
+    // Format 2: the host's side of the seams, after the join, where the pairing inserted
+    // vertices along the lips. The patch's own faces are kept: laid out narrow over the slit,
+    // far from their flat rest shape, their strain varies too fast across the band to be
+    // resampled (docs/remeshing.md).
     const int patch_material = static_cast<int>(obj.sim.materials.size()) - 1;
     engine::RemeshParams p = engine::band_around(obj.mesh, r.seams, 2.0);
     std::erase_if(*p.region, [&](engine::FaceId f) {
@@ -264,11 +318,32 @@ json Run::execute(const ResectOp& op) {
   json j = {{"object", op.object},
             {"removed_faces", rr.removed_faces},
             {"removed_area_mm2", rr.removed_area}};
+  std::vector<engine::BoundaryChain> cut_loops = rr.loops;
+  if (op.remesh) {
+    // The band around the cut: its first vertex per loop held, to find the loop again.
+    std::vector<std::vector<engine::VertexId>> lines;
+    for (const auto& l : cut_loops) lines.push_back(l.vertices);
+    engine::RemeshParams p = engine::band_around(obj.mesh, lines, 2.0);
+    p.constrained_vertices.assign(obj.mesh.num_vertices(), false);
+    for (const auto& l : cut_loops) p.constrained_vertices[l.vertices.front().index()] = true;
+    engine::EditMaps maps;
+    const std::size_t old_vertices = obj.mesh.num_vertices();
+    j["remesh"] = remesh_object(obj, std::move(p), &maps);
+    std::vector<engine::VertexId> image(old_vertices);
+    for (std::size_t v = 0; v < maps.vertices.size(); ++v)
+      if (maps.vertices[v].kind == engine::VertexOriginKind::Copy)
+        image[maps.vertices[v].parents[0].index()] = engine::VertexId(v);
+    for (auto& l : cut_loops) {
+      const engine::VertexId first = image[l.vertices.front().index()];
+      l = l.closed ? engine::boundary_chain(obj.mesh, first, first)
+                   : engine::boundary_chain(obj.mesh, first, image[l.vertices.back().index()]);
+    }
+  }
   json loops = json::array();
-  for (const auto& l : rr.loops) loops.push_back(l.vertices.size());
+  for (const auto& l : cut_loops) loops.push_back(l.vertices.size());
   j["loop_vertices"] = loops;
   if (op.anastomosis) {
-    const engine::Vec3 ca = centroid(obj.mesh, rr.loops[0]), cb = centroid(obj.mesh, rr.loops[1]);
+    const engine::Vec3 ca = centroid(obj.mesh, cut_loops[0]), cb = centroid(obj.mesh, cut_loops[1]);
     // Start both loops on the same side so the ends are sutured without a twist.
     engine::Vec3 axis = cb - ca;
     if (axis.norm() < 1e-12) axis = op.planes[0].normal;
@@ -277,14 +352,15 @@ json Run::execute(const ResectOp& op) {
     u -= u.dot(axis) * axis;
     if (u.norm() < 1e-9) u = axis.unitOrthogonal();
     u.normalize();
-    const engine::JoinResult r =
-        engine::join(obj.mesh, {{start_towards(obj.mesh, rr.loops[0], ca, u),
-                                 start_towards(obj.mesh, rr.loops[1], cb, u)}});
+    std::vector<engine::SuturePair> pairs = {{start_towards(obj.mesh, cut_loops[0], ca, u),
+                                              start_towards(obj.mesh, cut_loops[1], cb, u)}};
+    if (op.remesh) j["seam_remesh"] = match_object_seams(obj, pairs);
+    const engine::JoinResult r = engine::join(obj.mesh, pairs);
     engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
     engine::start_relaxation(obj.mesh, obj.sim, r.merged, {});
     for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
     j["anastomosis"] = suture_report(r.sutures[0]);
-    }
+  }
   j["mesh"] = mesh_counts(obj);
   return j;
 }

@@ -54,6 +54,7 @@ nlohmann::json object_summary(const SceneObject& object) {
       {"bounds_max", {box.max().x(), box.max().y(), box.max().z()}},
       {"position_hash", position_hash(m)},
       {"quality", mesh_quality_json(engine::mesh_quality(m))},
+      {"rest_quality", mesh_quality_json(engine::rest_quality(object.sim.rest))},
   };
 }
 

@@ -94,6 +94,7 @@ JoinOp parse_join(Fields& f) {
       s.finish();
     }
   }
+  op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
   return op;
 }
 
@@ -125,7 +126,11 @@ PatchOp parse_patch(Fields& f) {
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
   op.material = default_patch_material();
   if (auto m = f.optional_object("material")) op.material = parse_material_object(*m, op.material);
-  op.remesh = f.optional_bool("remesh", f.format_version() >= 2);
+  using SeamRemesh = PatchOp::SeamRemesh;
+  const bool remesh = f.optional_bool("remesh", f.format_version() >= 2);
+  op.remesh = !remesh                   ? SeamRemesh::None
+              : f.format_version() >= 3 ? SeamRemesh::Matched
+                                        : SeamRemesh::HostAfterJoin;
   return op;
 }
 
@@ -150,6 +155,7 @@ ResectOp parse_resect(Fields& f) {
   if (op.anastomosis && op.planes.size() != 2)
     f.fail("anastomosis", "needs two planes (two loose ends to suture)");
   if (auto a = f.optional_vec3("align")) op.align = vec(*a);
+  op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
   return op;
 }
 

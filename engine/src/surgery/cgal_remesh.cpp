@@ -24,6 +24,7 @@ using Point = Kernel::Point_3;
 using Segment = Kernel::Segment_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 using VI = Mesh::Vertex_index;
+using HI = Mesh::Halfedge_index;
 using FI = Mesh::Face_index;
 using EI = Mesh::Edge_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -201,6 +202,76 @@ int collapse_needles(Mesh& mesh, EdgeMap& constrained, VertexMap& fixed, IdMap& 
   return collapses;
 }
 
+// Collapses each marked open-boundary vertex r of the region (not fixed) into one of its two
+// boundary neighbours q, which keeps its place: the nearer first, the other if that one would
+// fold a face of r (normal turned by more than about 78 degrees) or break the link condition.
+// The constrained edges at both ends are marked again on q. Returns the number removed.
+// Deterministic: vertices in index order.
+template <class EdgeMap, class VertexMap, class IdMap, class FaceMap>
+int dissolve_boundary_vertices(Mesh& mesh, EdgeMap& constrained, VertexMap& fixed,
+                               IdMap& old_id, const FaceMap& in_region,
+                               const std::vector<bool>& marked_input) {
+  std::vector<VI> marked;
+  for (VI v : mesh.vertices())
+    if (v.idx() < marked_input.size() && marked_input[v.idx()] && !fixed[v] && mesh.is_border(v))
+      marked.push_back(v);
+  int removed = 0;
+  for (const VI r : marked) {
+    if (mesh.is_removed(r)) continue;
+    // Its two boundary neighbours: the border halfedge into r comes from one, out of it goes
+    // to the other.
+    std::vector<HI> candidates;
+    for (auto g : CGAL::halfedges_around_target(mesh.halfedge(r), mesh)) {
+      if (mesh.is_border(g)) candidates.push_back(g);                  // q -> r on the border
+      if (mesh.is_border(mesh.opposite(g))) candidates.push_back(g);   // q -> r, r -> q border
+    }
+    if (candidates.size() != 2) continue;  // not a simple boundary vertex
+    bool all_in_region = true;
+    for (FI f : CGAL::faces_around_target(mesh.halfedge(r), mesh))
+      all_in_region = all_in_region && (f == Mesh::null_face() || in_region[f]);
+    if (!all_in_region) continue;
+    auto length = [&](HI g) {
+      return (to_vec(mesh.point(mesh.source(g))) - to_vec(mesh.point(r))).norm();
+    };
+    if (length(candidates[1]) < length(candidates[0])) std::swap(candidates[0], candidates[1]);
+    for (const HI g : candidates) {
+      const VI q = mesh.source(g);
+      const EI e = mesh.edge(g);
+      if (!CGAL::Euler::does_satisfy_link_condition(e, mesh)) continue;
+      bool ok = true;
+      for (auto a : CGAL::halfedges_around_target(mesh.halfedge(r), mesh)) {
+        const FI f = mesh.face(a);
+        if (f == Mesh::null_face()) continue;
+        bool has_q = false;
+        for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) has_q |= v == q;
+        if (has_q) continue;  // removed with the edge
+        const auto old_corners = corners_after(mesh, f, Mesh::null_vertex(), Point());
+        const auto p = corners_after(mesh, f, r, mesh.point(q));
+        const Vec3 n_old = normal_of(old_corners[0], old_corners[1], old_corners[2]);
+        const Vec3 n_new = normal_of(p[0], p[1], p[2]);
+        ok = ok && n_new.dot(n_old) > 0.2 * n_new.norm() * n_old.norm();
+      }
+      if (!ok) continue;
+      const Point keep_at = mesh.point(q);
+      const int keep_id = old_id[q];
+      const bool keep_fixed = fixed[q];
+      std::vector<VI> ends;
+      for (const VI end : {r, q})
+        for (auto a : CGAL::halfedges_around_target(mesh.halfedge(end), mesh))
+          if (constrained[mesh.edge(a)] && mesh.edge(a) != e) ends.push_back(mesh.source(a));
+      const VI v = CGAL::Euler::collapse_edge(e, mesh);
+      for (const VI x : ends)
+        if (x != r && x != q) constrained[mesh.edge(mesh.halfedge(x, v))] = true;
+      mesh.point(v) = keep_at;
+      old_id[v] = keep_id;
+      fixed[v] = keep_fixed;
+      ++removed;
+      break;
+    }
+  }
+  return removed;
+}
+
 }  // namespace
 
 CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
@@ -285,6 +356,8 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     if (!segments.empty() && on_polyline(v)) return polylines.closest_point(p);
     return surface[static_cast<std::size_t>(sheet_of(v))]->closest_point(p);
   };
+
+  dissolve_boundary_vertices(mesh, econ, vfixed, old_id, in_region, in.removed_boundary_vertices);
 
   for (const RemeshBand& band : in.bands) {
     std::vector<FI> range;

@@ -25,6 +25,7 @@ struct CgalRemeshInput {
   int iterations = 3;
   std::vector<std::pair<int, int>> constrained_edges;  ///< kept as polylines
   std::vector<bool> constrained_vertices;              ///< per vertex: never moved nor removed
+  std::vector<bool> removed_boundary_vertices;  ///< per vertex: collapsed along the boundary first
 };
 
 /// Where an output point lies on the input surface.

@@ -168,10 +168,20 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
     auto spacing = [](const std::vector<double>& t, std::size_t i) {
       return std::min(t[i] - t[i - 1], t[i + 1] - t[i]);
     };
+    if (params.pairing == JoinPairing::InOrder && As.size() != Bs.size())
+      throw InvalidArgument(suture_name(p) + ": chains of " + std::to_string(a.vertices.size()) +
+                            " and " + std::to_string(b.vertices.size()) +
+                            " vertices cannot be paired in order");
     std::vector<int> RA{As.front()}, RB{Bs.front()};
     double ta_last = 0.0, tb_last = 0.0;
     std::size_t i = 1, j = 1;
     const std::size_t na = As.size(), nb = Bs.size();
+    if (params.pairing == JoinPairing::InOrder) {  // partners as given: nothing to insert
+      RA.assign(As.begin(), As.end() - 1);
+      RB.assign(Bs.begin(), Bs.end() - 1);
+      i = na - 1;
+      j = nb - 1;
+    }
     while (i + 1 < na || j + 1 < nb) {
       const double ta = i + 1 < na ? sa[i] : 2.0, tb = j + 1 < nb ? sb[j] : 2.0;
       const double tol = kMatch * std::min(i + 1 < na ? spacing(sa, i) : 1.0,

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sutura/engine/errors.hpp"
+#include "sutura/engine/surgery/seam_match.hpp"
 
 namespace sutura::engine {
 
@@ -22,6 +23,15 @@ VertexId nearest_boundary_vertex(const SurfaceMesh& mesh, const Vec3& p) {
 
 double mean_edge(const SurfaceMesh& mesh, const BoundaryChain& c) {
   return chain_length(mesh, c) / double(c.vertices.size() - 1);
+}
+
+// Arc length from the chain's first vertex to each of its vertices over the whole length.
+std::vector<double> arc_fractions(const SurfaceMesh& mesh, const BoundaryChain& c) {
+  std::vector<double> f(c.vertices.size(), 0.0);
+  for (std::size_t i = 1; i < f.size(); ++i)
+    f[i] = f[i - 1] + (mesh.position(c.vertices[i]) - mesh.position(c.vertices[i - 1])).norm();
+  for (double& x : f) x /= f.back();
+  return f;
 }
 
 }  // namespace
@@ -63,6 +73,32 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
           : std::max(params.min_edge_length,
                      0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right)));
   plan.rest = make_patch(pp);
+  plan.edge_length = pp.target_edge_length;
+  const double hl = 0.5 * pp.length, hw = 0.5 * pp.width;
+
+  // Patch chains: from the tip at the incision's end round to the corner at its start on the
+  // left side (+y), and from the start corner on the right side (-y) to the end tip.
+  const Vec3 tip_end(hl, 0, 0);
+  const Vec3 start_left = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, hw, 0);
+  const Vec3 start_right = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, -hw, 0);
+  const VertexId e = nearest_boundary_vertex(plan.rest, tip_end);
+  plan.edge_left = boundary_chain(plan.rest, e, nearest_boundary_vertex(plan.rest, start_left));
+  plan.edge_right = boundary_chain(plan.rest, nearest_boundary_vertex(plan.rest, start_right), e);
+  if (params.left_segments > 0 || params.right_segments > 0) {
+    if (params.left_segments < 1 || params.right_segments < 1)
+      throw InvalidArgument("patch: left_segments and right_segments must both be >= 1");
+    // Flat and unstressed, the patch is remeshed in its rest shape: exact.
+    ResampleChainsParams rp;
+    rp.target_edge_length = pp.target_edge_length;
+    const ResampleChainsResult r = resample_chains(
+        plan.rest,
+        {{plan.edge_left, equal_fractions(params.left_segments)},
+         {plan.edge_right, equal_fractions(params.right_segments)}},
+        rp);
+    plan.rest = r.mesh;
+    plan.edge_left = r.chains[0];
+    plan.edge_right = r.chains[1];
+  }
 
   // Initial placement: a tent over the closed slit. Along the cut the patch follows the lips;
   // across it it is compressed to a narrow band (lateral scale k) and arched outwards, so that
@@ -86,7 +122,6 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
     tangent = (p1 - p0).normalized();
     normal = ((1 - t) * vn[lip[i].index()] + t * vn[lip[i + 1].index()]).normalized();
   };
-  const double hl = 0.5 * pp.length, hw = 0.5 * pp.width;
   auto half_width = [&](double px) {  // of the outline at px
     const double u = std::clamp(px / hl, -1.0, 1.0);
     switch (pp.shape) {
@@ -98,26 +133,48 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
   };
   const double lip_edge = 0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right));
   const double k = std::min(1.0, 0.4 * lip_edge / hw);
+  // Where along the lips a flat point goes: its x over the length, or, for matched seams
+  // (one edge vertex per lip vertex, paired in order), the lip fraction of each edge vertex's
+  // partner, interpolated in x along each edge and blended across the patch, so that every
+  // edge vertex lands beside its own lip vertex. Both are increasing in x: an immersion.
+  std::vector<std::pair<double, double>> table_left, table_right;  // (x, lip fraction)
+  const auto& rest_x = plan.rest.positions();
+  const std::size_t nl = plan.lip_left.vertices.size(), nr = plan.lip_right.vertices.size();
+  const bool matched = params.left_segments > 0 && plan.edge_left.vertices.size() == nl &&
+                       plan.edge_right.vertices.size() == nr;
+  if (matched) {
+    const std::vector<double> fl = arc_fractions(host, plan.lip_left);
+    const std::vector<double> fr = arc_fractions(host, plan.lip_right);
+    for (std::size_t j = 0; j < nl; ++j)  // lip_left[j] pairs with edge_left[nl - 1 - j]
+      table_left.emplace_back(rest_x[plan.edge_left.vertices[nl - 1 - j].index()].x(), fl[j]);
+    for (std::size_t m = 0; m < nr; ++m)  // edge_right[m] pairs with lip_right[nr - 1 - m]
+      table_right.emplace_back(rest_x[plan.edge_right.vertices[m].index()].x(), 1.0 - fr[nr - 1 - m]);
+  }
+  auto lookup = [](const std::vector<std::pair<double, double>>& t, double x) {
+    if (x <= t.front().first) return t.front().second;
+    std::size_t i = 0;
+    while (i + 2 < t.size() && t[i + 1].first < x) ++i;
+    const double span = t[i + 1].first - t[i].first;
+    const double a = span > 0.0 ? std::clamp((x - t[i].first) / span, 0.0, 1.0) : 1.0;
+    return (1.0 - a) * t[i].second + a * t[i + 1].second;
+  };
   std::vector<Vec3> placed;
   placed.reserve(plan.rest.num_vertices());
   for (const Vec3& p : plan.rest.positions()) {
     Vec3 point, tangent, normal;
-    lip_at(p.x() / pp.length + 0.5, point, tangent, normal);
+    double u = p.x() / pp.length + 0.5;
+    if (matched) {
+      const double left = std::clamp(0.5 * (1.0 + p.y() / std::max(half_width(p.x()), 1e-12)), 0.0, 1.0);
+      u = left * lookup(table_left, p.x()) + (1.0 - left) * lookup(table_right, p.x());
+    }
+    lip_at(u, point, tangent, normal);
     const Vec3 side = normal.cross(tangent).normalized();
     const double w = std::max(half_width(p.x()), 1e-12);
     const double r = std::clamp(p.y() / w, -1.0, 1.0);
     placed.push_back(point + k * p.y() * side + 0.5 * w * (1.0 - r * r) * normal);
   }
   plan.placed = SurfaceMesh(placed, plan.rest.faces());
-
-  // Patch chains: from the tip at the incision's end round to the corner at its start on the
-  // left side (+y), and from the start corner on the right side (-y) to the end tip.
-  const Vec3 tip_end(hl, 0, 0);
-  const Vec3 start_left = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, hw, 0);
-  const Vec3 start_right = slit ? Vec3(-hl, 0, 0) : Vec3(-hl, -hw, 0);
-  const VertexId e = nearest_boundary_vertex(plan.rest, tip_end);
-  plan.edge_left = boundary_chain(plan.rest, e, nearest_boundary_vertex(plan.rest, start_left));
-  plan.edge_right = boundary_chain(plan.rest, nearest_boundary_vertex(plan.rest, start_right), e);
+  plan.matched = matched;
 
   // The rest shape is the flat patch moved rigidly onto the tangent plane at the incision's
   // middle (axes: along the cut, sideways, host normal). Rigid motions change nothing

@@ -42,17 +42,20 @@ Eigen::Vector3d plane_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, c
 
 }  // namespace
 
-MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
-  const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
+namespace {
+
+// Quality of triangles given by `corners(i, p)` (fills p[3] for triangle i), i < n.
+template <class Corners>
+MeshQuality triangle_quality(std::size_t n, Corners&& corners) {
   MeshQuality q;
-  q.faces = set.size();
-  if (set.empty()) return q;
+  q.faces = n;
+  if (n == 0) return q;
   std::vector<double> smallest;
-  smallest.reserve(set.size());
+  smallest.reserve(n);
   q.min_edge = std::numeric_limits<double>::infinity();
-  for (const FaceId f : set) {
-    const auto v = mesh.face_vertices(f);
-    const Vec3 p[3] = {mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])};
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 p[3];
+    corners(i, p);
     double m = 180.0;
     for (int k = 0; k < 3; ++k) {
       const Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
@@ -66,6 +69,22 @@ MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& fac
   q.min_angle_deg = smallest.front();
   q.p5_angle_deg = smallest[static_cast<std::size_t>(0.05 * double(smallest.size() - 1))];
   return q;
+}
+
+}  // namespace
+
+MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
+  const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
+  return triangle_quality(set.size(), [&](std::size_t i, Vec3* p) {
+    const auto v = mesh.face_vertices(set[i]);
+    for (int k = 0; k < 3; ++k) p[k] = mesh.position(v[k]);
+  });
+}
+
+MeshQuality rest_quality(const RestState& rest) {
+  return triangle_quality(rest.elements.size(), [&](std::size_t i, Vec3* p) {
+    for (int k = 0; k < 3; ++k) p[k] = rest.elements[i].X[k];
+  });
 }
 
 double mean_edge_length(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
@@ -144,7 +163,14 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
     throw InvalidArgument("constrained_vertices: " + std::to_string(params.constrained_vertices.size()) +
                           " flags for " + std::to_string(nv) + " vertices");
 
+  if (!params.removed_boundary_vertices.empty() && params.removed_boundary_vertices.size() != nv)
+    throw InvalidArgument("removed_boundary_vertices: " +
+                          std::to_string(params.removed_boundary_vertices.size()) + " flags for " +
+                          std::to_string(nv) + " vertices");
+
   detail::CgalRemeshInput in;
+  in.removed_boundary_vertices = params.removed_boundary_vertices;
+  in.removed_boundary_vertices.resize(nv, false);
   in.positions = &mesh.positions();
   in.faces = &mesh.faces();
   in.region = region;
@@ -165,16 +191,22 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
       throw InvalidArgument("constrained_edges: " + std::to_string(a.value) + "-" +
                             std::to_string(b.value) + " is not an edge of the mesh");
     in.constrained_edges.emplace_back(a.value, b.value);
-    ++degree[a.index()];
-    ++degree[b.index()];
   }
+  // Degrees over the union of the constrained and the open boundary edges (a constrained
+  // edge on the boundary counts once).
   for (std::size_t h = 0; h < 3 * nf; ++h)
     if (!mesh.twin(HalfedgeId(h)).valid()) {
       const auto fv = mesh.face_vertices(SurfaceMesh::face(HalfedgeId(h)));
       const int k = static_cast<int>(h % 3);
-      ++degree[fv[k].index()];
-      ++degree[fv[(k + 1) % 3].index()];
+      const VertexId a = fv[k], b = fv[(k + 1) % 3];
+      constrained.push_back(a.value < b.value ? std::pair{a, b} : std::pair{b, a});
     }
+  std::sort(constrained.begin(), constrained.end());
+  constrained.erase(std::unique(constrained.begin(), constrained.end()), constrained.end());
+  for (const auto& [a, b] : constrained) {
+    ++degree[a.index()];
+    ++degree[b.index()];
+  }
   for (std::size_t v = 0; v < nv; ++v)
     if (degree[v] != 0 && degree[v] != 2) in.constrained_vertices[v] = true;
 

@@ -35,8 +35,10 @@ namespace sutura::app {
 /// The newest session format version this build reads and writes. A session keeps its meaning
 /// across versions: a default that changes is keyed by the version of the session's header
 /// (docs/session-format.md lists them). 2: `incise` remeshes the band around a cut-through
-/// incision unless "remesh": false.
-inline constexpr int kSessionFormatVersion = 2;
+/// incision unless "remesh": false. 3: `join`, `patch` and `resect` match their seams (both
+/// chains resampled to one spacing and remeshed around before the suture) and `resect`
+/// remeshes the band around its cut, unless "remesh": false.
+inline constexpr int kSessionFormatVersion = 3;
 
 /// A session that cannot be read or run. `what()` reads "FILE:LINE: op 'OP': field 'F': problem"
 /// with the parts that are known.
@@ -244,6 +246,8 @@ struct JoinOp {
   /// Where the joined shape starts (`placement`: "mean" or "onto_b"); held vertices (any
   /// fixed translation) are passed on by the replay.
   engine::SuturePlacement placement = engine::SuturePlacement::Mean;
+  /// Match the seams before joining (engine::match_seams; format 3; before: false).
+  bool remesh = true;
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
@@ -254,8 +258,13 @@ struct PatchOp {
   engine::Vec3 end = engine::Vec3::Zero();
   engine::PatchPlanParams params;
   engine::ShellMaterial material;
-  /// Remesh the host's side of the seams afterwards (session format 2; version 1: false).
-  bool remesh = true;
+  /// How the seams are remeshed, by the session's format version when "remesh" is true.
+  enum class SeamRemesh {
+    None,           ///< "remesh": false, or format 1
+    HostAfterJoin,  ///< format 2: the host's side of the seams, after the join
+    Matched,        ///< format 3: lips and patch edges resampled to one count, before the join
+  };
+  SeamRemesh remesh = SeamRemesh::Matched;
 };
 
 /// Removes the region between cut planes (or beyond one) and optionally sutures the two
@@ -269,6 +278,9 @@ struct ResectOp {
   /// Anastomosis: the loops' first vertices are the ones nearest this point (default: the
   /// point of each loop farthest along +z), so the two ends are sutured without a twist.
   std::optional<engine::Vec3> align;
+  /// Remesh the band around the cut, and match the anastomosis's loops (format 3; before:
+  /// false).
+  bool remesh = true;
 };
 
 /// Remeshes a region of an object (engine::remesh): its sutures, material borders, open

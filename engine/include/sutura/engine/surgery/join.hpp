@@ -48,8 +48,20 @@ enum class SuturePlacement {
 /// Parses "mean" | "onto_b"; throws InvalidArgument otherwise.
 SuturePlacement parse_suture_placement(const std::string& name);
 
+/// Which vertices of a pair's chains are partners.
+enum class JoinPairing {
+  /// By normalised arc length along the current positions; vertices without a partner get one
+  /// inserted (below).
+  ArcLength,
+  /// In order: chains of equal counts (matched seams, seam_match.hpp) pair vertex for vertex,
+  /// as stitches spaced evenly along both, whatever their current positions; nothing is
+  /// inserted. Unequal counts are an error.
+  InOrder,
+};
+
 struct JoinParams {
   SuturePlacement placement = SuturePlacement::Mean;
+  JoinPairing pairing = JoinPairing::ArcLength;
   /// Per input vertex (or empty): vertices OntoB must not move (held supports). Every copy in
   /// a suture is prescribed anyway; a held copy of chain a still moves onto its partner.
   std::vector<bool> held;

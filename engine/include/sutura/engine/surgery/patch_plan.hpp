@@ -20,6 +20,11 @@ struct PatchPlanParams {
   double min_edge_length = 0.0;
   /// mm: the lips' end points must lie this close to the boundary.
   double max_distance = 1.0;
+  /// Matched seams (seam_match.hpp): when > 0, the patch's left and right edges are resampled
+  /// to this many equal segments each and the band along them remeshed, flat, before the
+  /// patch is laid out, so that each edge pairs one to one with a lip resampled to the same
+  /// count. 0: the edges as make_patch cuts them (the join pairs them by arc length).
+  int left_segments = 0, right_segments = 0;
 };
 
 struct PatchPlan {
@@ -30,6 +35,10 @@ struct PatchPlan {
   BoundaryChain lip_left, lip_right;      ///< host chains (boundary direction)
   BoundaryChain edge_left, edge_right;    ///< patch chains (boundary direction) meeting them
   double incision_length = 0.0;           ///< mm, mean lip length
+  double edge_length = 0.0;               ///< mm, the spacing the patch was cut at
+  /// Each edge has as many vertices as its lip (left_segments/right_segments were met): they
+  /// pair in order (JoinPairing::InOrder), stitch for stitch, and are laid out beside them.
+  bool matched = false;
 };
 
 /// Plans a patch for the incision whose ends are near `start` and `end` on `host`: an interior

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sutura/engine/mesh.hpp"
+#include "sutura/engine/shell/rest_state.hpp"
 #include "sutura/engine/surgery/edit_maps.hpp"
 
 namespace sutura::engine {
@@ -28,6 +29,11 @@ struct MeshQuality {
 
 /// Quality of `faces` of `mesh` (all faces when empty). Cost O(F log F).
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
+
+/// Quality of the elements' rest shapes (per-element triangles; a merged vertex has one rest
+/// position per element, so this is what the solver's elements are shaped like at rest).
+/// Cost O(F log F).
+MeshQuality rest_quality(const RestState& rest);
 
 /// Mean edge length of `faces` (all faces when empty), mm. Cost O(F).
 double mean_edge_length(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
@@ -55,6 +61,12 @@ struct RemeshParams {
   /// Per vertex (empty or mesh-sized): never moved nor removed (fixed DOFs, loads, probes,
   /// ends of constrained polylines).
   std::vector<bool> constrained_vertices;
+  /// Per vertex (empty or mesh-sized): open-boundary vertices of the region to remove before
+  /// remeshing, each collapsed along the boundary into a neighbour on it that keeps its place
+  /// (the boundary there becomes the chord), unless the collapse would fold a face; a vertex
+  /// that cannot go stays. For resampling a chain (seam_match.hpp), which CGAL's collapses do
+  /// not do along a boundary.
+  std::vector<bool> removed_boundary_vertices;
 };
 
 struct RemeshResult {

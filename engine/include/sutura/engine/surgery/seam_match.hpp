@@ -1,0 +1,79 @@
+#pragma once
+// Matched seams: before a suture, both chains of each pair are resampled to the same number
+// of equal arc-length segments and the band of faces around each is remeshed at that
+// spacing, so that the join pairs their vertices one to one and inserts none. Why: pairing
+// chains of different spacings by arc length (join.hpp) inserts partners next to existing
+// vertices, and the thin triangles beside the seam are the worst elements of a repaired mesh
+// (docs/remeshing.md: down to 1 degree after a resection anastomosis). Each side is remeshed
+// in its own configuration before the join, where it is whole and (for a fresh patch) in its
+// rest shape, not in the joined shape, which is far from any rest shape across a wide gap.
+#include <utility>
+#include <vector>
+
+#include "sutura/engine/mesh.hpp"
+#include "sutura/engine/surgery/boundary_chain.hpp"
+#include "sutura/engine/surgery/edit_maps.hpp"
+#include "sutura/engine/surgery/join.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
+
+namespace sutura::engine {
+
+/// A chain to resample: its new inner points at these fractions of its length from its
+/// first vertex (increasing, in (0, 1); a loop needs at least two).
+struct ChainResample {
+  BoundaryChain chain;
+  std::vector<double> at;
+};
+
+/// The inner fractions of `segments` equal pieces: 1/segments, ..., (segments-1)/segments.
+std::vector<double> equal_fractions(int segments);
+
+struct ResampleChainsParams {
+  /// mm, > 0: the spacing of the remeshed band (normally each chain's length / segments).
+  double target_edge_length = 0.0;
+  /// The band: faces with a corner within this many target lengths of a chain.
+  double band_width = 2.0;
+  /// Kept by the remesh as they are (see RemeshParams): held vertices, earlier seams.
+  std::vector<bool> constrained_vertices;
+  std::vector<std::pair<VertexId, VertexId>> constrained_edges;
+};
+
+struct ResampleChainsResult {
+  SurfaceMesh mesh;
+  EditMaps maps;  ///< from the mesh passed in
+  /// The chains in the new mesh, in the order given: their ends and the new points (on the
+  /// old chain), and an old vertex between two where it could not be removed.
+  std::vector<BoundaryChain> chains;
+  MeshQuality before, after;  ///< of the band
+};
+
+/// Resamples the chains (boundary runs of `mesh`, disjoint but for shared ends): the new
+/// points are inserted, the old inner vertices removed (collapsed along the chain; a held one
+/// stays), and the band around them remeshed with the new points held. Deterministic. Throws
+/// InvalidArgument for a chain that is not a boundary run, fractions out of order or range,
+/// or a target length <= 0; Error when the remesh cannot keep a chain (an internal error).
+/// Cost: O(chain length) for the resampling, then one remesh of the band (remesh.hpp).
+ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<ChainResample>& chains,
+                                     const ResampleChainsParams& params);
+
+/// The seam spacing of a suture pair: the median edge length of the faces next to its two
+/// chains (band_around's), never below `min_spacing`. Cost O(F).
+double seam_spacing(const SurfaceMesh& mesh, const SuturePair& pair, double min_spacing = 0.0);
+
+/// Segments for a pair sutured at `spacing`: the mean length of its chains over the spacing,
+/// rounded, at least 1 (3 for loops).
+int seam_segments(const SurfaceMesh& mesh, const SuturePair& pair, double spacing);
+
+/// Resamples every pair's two chains at one set of fractions (seam_segments pieces at its
+/// seam_spacing, held vertices of either chain kept as breakpoints at their own fraction) and
+/// remeshes around them, so that join(result.mesh, result.pairs) inserts no vertex. Same
+/// contract and cost as resample_chains.
+struct MatchedSeams {
+  ResampleChainsResult edit;
+  std::vector<SuturePair> pairs;
+  std::vector<double> spacing;  ///< mm, per pair
+};
+MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
+                         ResampleChainsParams params);
+
+}  // namespace sutura::engine

@@ -1,0 +1,240 @@
+#include "sutura/engine/surgery/seam_match.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "sutura/engine/errors.hpp"
+#include "mesh_walk.hpp"
+#include "triangle_soup.hpp"
+
+namespace sutura::engine {
+
+namespace {
+
+// The chain's vertices as a path, a loop's first vertex repeated at the end.
+std::vector<int> path_of(const BoundaryChain& c) {
+  std::vector<int> p;
+  for (const VertexId v : c.vertices) p.push_back(v.value);
+  if (c.closed) p.push_back(p.front());
+  return p;
+}
+
+// Inserts the points at equal arc lengths along `path` (soup vertex ids) into the soup and
+// returns them, ends included; `full` receives the path with them inserted. An existing
+// vertex within a millionth of a segment of a target point is taken as it is.
+std::vector<int> resample_path(detail::TriangleSoup& soup, const std::vector<int>& path,
+                               const std::vector<double>& at, std::vector<int>& full) {
+  std::vector<double> s(path.size(), 0.0);
+  for (std::size_t i = 1; i < path.size(); ++i)
+    s[i] = s[i - 1] + (soup.position(path[i]) - soup.position(path[i - 1])).norm();
+  const double length = s.back();
+  const double eps = 1e-9 * length;
+  std::vector<int> out{path.front()};
+  full.assign(1, path.front());
+  std::size_t i = 0;            // the target lies on path edge (i, i + 1)
+  int last = path.front();      // the last vertex on that edge so far
+  double s_last = 0.0;
+  for (const double fraction : at) {
+    const double target = length * fraction;
+    while (i + 2 < path.size() && s[i + 1] <= target) {
+      ++i;
+      last = path[i];
+      s_last = s[i];
+      full.push_back(last);
+    }
+    if (target - s_last <= eps) {
+      out.push_back(last);  // an existing vertex (an end of the edge, or an inserted one)
+    } else if (s[i + 1] - target <= eps) {
+      out.push_back(path[i + 1]);
+    } else {
+      const double t = (target - s_last) / (s[i + 1] - s_last);
+      last = soup.split_edge(last, path[i + 1], t);
+      s_last = target;
+      out.push_back(last);
+      full.push_back(last);
+    }
+  }
+  for (std::size_t j = i + 1; j < path.size(); ++j) full.push_back(path[j]);
+  out.push_back(path.back());
+  for (std::size_t k = 1; k < out.size(); ++k)
+    if (out[k] == out[k - 1])
+      throw InvalidArgument("resample_chains: two points within " + std::to_string(eps) +
+                            " mm of one vertex of a chain of " + std::to_string(length) + " mm");
+  return out;
+}
+
+}  // namespace
+
+ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<ChainResample>& chains,
+                                     const ResampleChainsParams& params) {
+  if (!(params.target_edge_length > 0.0) || !std::isfinite(params.target_edge_length))
+    throw InvalidArgument("resample_chains: target_edge_length must be > 0");
+  if (chains.empty()) throw InvalidArgument("resample_chains: no chain");
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    const ChainResample& r = chains[c];
+    const std::size_t n = r.chain.vertices.size();
+    bool ordered = r.at.size() <= 1000000 && r.at.size() >= (r.chain.closed ? 2u : 0u);
+    for (std::size_t k = 0; k < r.at.size() && ordered; ++k)
+      ordered = r.at[k] > 0.0 && r.at[k] < 1.0 && (k == 0 || r.at[k] > r.at[k - 1]);
+    if (!ordered)
+      throw InvalidArgument("resample_chains: chain " + std::to_string(c + 1) +
+                            ": the fractions must increase in (0, 1) (a loop needs two)");
+    if (n < 2) throw InvalidArgument("resample_chains: chain " + std::to_string(c + 1) + " has no edge");
+    for (std::size_t i = 0; i + (r.chain.closed ? 0 : 1) < n; ++i) {
+      const VertexId u = r.chain.vertices[i], w = r.chain.vertices[(i + 1) % n];
+      const HalfedgeId h = u.index() < mesh.num_vertices() && w.index() < mesh.num_vertices()
+                               ? detail::find_halfedge(mesh, u, w)
+                               : HalfedgeId();
+      if (!h.valid() || !mesh.is_boundary(h))
+        throw InvalidArgument("resample_chains: chain " + std::to_string(c + 1) +
+                              " is not a run of boundary edges in the boundary direction");
+    }
+  }
+
+  detail::TriangleSoup soup(mesh);
+  std::vector<std::vector<int>> points;
+  std::vector<std::vector<VertexId>> lines;  // the chains with the new points in them
+  for (const ChainResample& r : chains) {
+    std::vector<int> full;
+    points.push_back(resample_path(soup, path_of(r.chain), r.at, full));
+    lines.emplace_back(full.begin(), full.end());
+    if (r.chain.closed) lines.back().pop_back();
+  }
+  EditMaps split_maps;
+  const SurfaceMesh split = std::move(soup).build(split_maps);
+
+  RemeshParams rp = band_around(split, lines, params.band_width, params.target_edge_length);
+  const auto carried = carry_edges(split_maps, split, params.constrained_edges);
+  rp.constrained_edges.insert(rp.constrained_edges.end(), carried.begin(), carried.end());
+  rp.constrained_vertices.assign(split.num_vertices(), false);
+  if (!params.constrained_vertices.empty()) {
+    if (params.constrained_vertices.size() != mesh.num_vertices())
+      throw InvalidArgument("resample_chains: constrained_vertices has the wrong size");
+    for (std::size_t v = 0; v < split.num_vertices(); ++v) {
+      const VertexOrigin& o = split_maps.vertices[v];
+      if (o.parents.size() == 1) rp.constrained_vertices[v] = params.constrained_vertices[o.parents[0].index()];
+    }
+  }
+  // The old chain vertices go (collapsed along the chain into a neighbour), the new points
+  // stay.
+  rp.removed_boundary_vertices.assign(split.num_vertices(), false);
+  for (const auto& line : lines)
+    for (const VertexId v : line) rp.removed_boundary_vertices[v.index()] = true;
+  for (const auto& p : points)
+    for (const int v : p) rp.constrained_vertices[std::size_t(v)] = true;
+  RemeshResult r = remesh(split, rp);
+
+  std::vector<VertexId> image(split.num_vertices());
+  for (std::size_t v = 0; v < r.maps.vertices.size(); ++v) {
+    const VertexOrigin& o = r.maps.vertices[v];
+    if (o.kind == VertexOriginKind::Copy) image[o.parents[0].index()] = VertexId(v);
+  }
+  ResampleChainsResult result;
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    const auto& p = points[c];
+    for (const int v : p)
+      if (!image[std::size_t(v)].valid())
+        throw Error("resample_chains: internal error: the remesh removed a held chain vertex");
+    BoundaryChain out;
+    out.closed = chains[c].chain.closed;
+    // Point by point: the remesh may leave an old chain vertex between two new ones (it
+    // collapses them only when an edge is short enough); the chain then keeps it.
+    for (std::size_t k = 0; k + 1 < p.size(); ++k) {
+      const BoundaryChain piece = boundary_chain(r.mesh, image[std::size_t(p[k])], image[std::size_t(p[k + 1])]);
+      out.vertices.insert(out.vertices.end(), piece.vertices.begin(), piece.vertices.end() - 1);
+    }
+    if (!out.closed) out.vertices.push_back(image[std::size_t(p.back())]);
+    result.chains.push_back(std::move(out));
+  }
+  result.maps = compose(split_maps, r.maps);
+  result.mesh = std::move(r.mesh);
+  result.before = r.before;
+  result.after = r.after;
+  return result;
+}
+
+std::vector<double> equal_fractions(int segments) {
+  std::vector<double> at;
+  for (int k = 1; k < segments; ++k) at.push_back(double(k) / segments);
+  return at;
+}
+
+double seam_spacing(const SurfaceMesh& mesh, const SuturePair& pair, double min_spacing) {
+  const RemeshParams p = band_around(mesh, {pair.a.vertices, pair.b.vertices}, 0.0);
+  return std::max(p.target_edge_length, min_spacing);
+}
+
+int seam_segments(const SurfaceMesh& mesh, const SuturePair& pair, double spacing) {
+  const double mean = 0.5 * (chain_length(mesh, pair.a) + chain_length(mesh, pair.b));
+  const long n = std::lround(mean / spacing);
+  return static_cast<int>(std::clamp<long>(n, pair.a.closed ? 3 : 1, 1000000));
+}
+
+namespace {
+
+// Fractions of the chain's length at each of its vertices (a loop: from its first vertex).
+std::vector<double> vertex_fractions(const SurfaceMesh& mesh, const BoundaryChain& c) {
+  const std::size_t n = c.vertices.size();
+  std::vector<double> f(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i)
+    f[i] = f[i - 1] + (mesh.position(c.vertices[i]) - mesh.position(c.vertices[i - 1])).norm();
+  const double total = chain_length(mesh, c);
+  for (double& x : f) x /= total;
+  return f;
+}
+
+// The inner fractions (along chain a) of one pair's common points: `segments` pieces, the
+// held inner vertices of both chains as breakpoints (b's at 1 - its own fraction: it runs the
+// other way), each stretch between breakpoints cut into pieces in proportion to its length.
+std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& pair, int segments,
+                                     const std::vector<bool>& held) {
+  std::vector<double> breaks{0.0, 1.0};
+  for (const bool on_b : {false, true}) {
+    const BoundaryChain& c = on_b ? pair.b : pair.a;
+    const std::vector<double> f = vertex_fractions(mesh, c);
+    for (std::size_t i = 1; i < c.vertices.size(); ++i)
+      if (!held.empty() && held[c.vertices[i].index()] && (c.closed || i + 1 < c.vertices.size()))
+        breaks.push_back(on_b ? 1.0 - f[i] : f[i]);
+  }
+  std::sort(breaks.begin(), breaks.end());
+  // Breakpoints closer than a third of a piece are one (the join pairs them within 0.4).
+  std::vector<double> kept{0.0};
+  for (const double b : breaks)
+    if (b - kept.back() > 1.0 / (3.0 * segments) && 1.0 - b > 1.0 / (3.0 * segments)) kept.push_back(b);
+  kept.push_back(1.0);
+  std::vector<double> at;
+  for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
+    const double span = kept[i + 1] - kept[i];
+    const long pieces = std::max(1L, std::lround(span * segments));
+    if (i > 0) at.push_back(kept[i]);
+    for (long k = 1; k < pieces; ++k) at.push_back(kept[i] + span * double(k) / double(pieces));
+  }
+  return at;
+}
+
+}  // namespace
+
+MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
+                         ResampleChainsParams params) {
+  MatchedSeams m;
+  std::vector<ChainResample> chains;
+  double finest = HUGE_VAL;
+  for (const SuturePair& p : pairs) {
+    const double h = seam_spacing(mesh, p);
+    const std::vector<double> at = common_fractions(mesh, p, seam_segments(mesh, p, h),
+                                                    params.constrained_vertices);
+    std::vector<double> at_b;  // the same points along b, which runs the other way
+    for (auto it = at.rbegin(); it != at.rend(); ++it) at_b.push_back(1.0 - *it);
+    m.spacing.push_back(h);
+    finest = std::min(finest, h);
+    chains.push_back({p.a, at});
+    chains.push_back({p.b, at_b});
+  }
+  params.target_edge_length = finest;
+  m.edit = resample_chains(mesh, chains, params);
+  for (std::size_t i = 0; i < pairs.size(); ++i) m.pairs.push_back({m.edit.chains[2 * i], m.edit.chains[2 * i + 1]});
+  return m;
+}
+
+}  // namespace sutura::engine

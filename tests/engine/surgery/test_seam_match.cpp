@@ -1,0 +1,153 @@
+#include "sutura/engine/surgery/seam_match.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sutura/engine/errors.hpp"
+#include "sutura/engine/generators.hpp"
+
+namespace sutura::engine {
+namespace {
+
+// Two components: `first` as given, `second` moved by `offset`.
+SurfaceMesh side_by_side(const SurfaceMesh& first, const SurfaceMesh& second, const Vec3& offset) {
+  std::vector<Vec3> x = first.positions();
+  std::vector<FaceIndices> f = first.faces();
+  const int off = int(x.size());
+  for (const Vec3& p : second.positions()) x.push_back(p + offset);
+  for (FaceIndices t : second.faces()) {
+    for (auto& v : t) v += off;
+    f.push_back(t);
+  }
+  return SurfaceMesh(x, f);
+}
+
+BoundaryChain chain(const SurfaceMesh& m, const Vec3& from, const Vec3& to) {
+  ChainSpec s;
+  s.from = from;
+  s.to = to;
+  return find_boundary_chain(m, s);
+}
+
+BoundaryChain loop(const SurfaceMesh& m, const Vec3& near) {
+  ChainSpec s;
+  s.from = near;
+  s.loop = true;
+  s.max_distance = 5.0;
+  return find_boundary_chain(m, s);
+}
+
+// Two strips 10 x 4 mm facing across a 0.01 mm gap (so that the joined shape is the rest
+// shape), their facing edges cut into 4 and 7 pieces.
+constexpr double kGap = 0.01;
+struct Strips {
+  SurfaceMesh mesh = side_by_side(make_strip({10.0, 4.0, 10, 4}), make_strip({10.0, 4.0, 10, 7}),
+                                  Vec3(10.0 + kGap, 0, 0));
+  SuturePair pair{chain(mesh, {10, -2, 0}, {10, 2, 0}),
+                  chain(mesh, {10 + kGap, 2, 0}, {10 + kGap, -2, 0})};
+};
+
+TEST(SeamMatch, ChainsOfDifferentSpacingsGetOneCountAndTheJoinInsertsNothing) {
+  const Strips s;
+  ASSERT_EQ(s.pair.a.vertices.size(), 5u);
+  ASSERT_EQ(s.pair.b.vertices.size(), 8u);
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, {});
+  ASSERT_TRUE(m.edit.mesh.validate().ok()) << m.edit.mesh.validate().summary();
+  const SuturePair& p = m.pairs[0];
+  ASSERT_EQ(p.a.vertices.size(), p.b.vertices.size());
+  // The seam spacing is the faces' beside it (1 mm and 4/7 mm; the median lies between), so
+  // the 4 mm seam has between 4 and 7 pieces.
+  EXPECT_GE(p.a.vertices.size(), 5u);
+  EXPECT_LE(p.a.vertices.size(), 8u);
+  // Every point on its old chain (x = 10 and x = 10.01), evenly spaced, the ends kept.
+  const std::size_t n = p.a.vertices.size() - 1;
+  for (std::size_t k = 0; k <= n; ++k) {
+    const Vec3 a = m.edit.mesh.position(p.a.vertices[k]), b = m.edit.mesh.position(p.b.vertices[n - k]);
+    EXPECT_NEAR(a.x(), 10.0, 1e-12);
+    EXPECT_NEAR(b.x(), 10.0 + kGap, 1e-12);
+    EXPECT_NEAR(a.y(), -2.0 + 4.0 * double(k) / double(n), 1e-12);
+    EXPECT_NEAR(b.y(), a.y(), 1e-12);
+  }
+  for (const JoinPairing pairing : {JoinPairing::ArcLength, JoinPairing::InOrder}) {
+    JoinParams jp;
+    jp.pairing = pairing;
+    const JoinResult j = join(m.edit.mesh, m.pairs, jp);
+    EXPECT_EQ(j.sutures[0].inserted_a + j.sutures[0].inserted_b, 0);
+    EXPECT_EQ(j.merged.size(), n + 1);
+  }
+  // Without matching, the pairing inserts partners next to existing vertices.
+  const JoinResult raw = join(s.mesh, {s.pair});
+  EXPECT_GT(raw.sutures[0].inserted_a, 0);
+  EXPECT_GE(m.edit.after.min_angle_deg, 20.0);
+  EXPECT_GE(mesh_quality(join(m.edit.mesh, m.pairs).mesh).min_angle_deg, 20.0);
+  EXPECT_LT(mesh_quality(raw.mesh).min_angle_deg, 20.0);
+}
+
+TEST(SeamMatch, LoopsOfTwoTubesAnastomoseWithoutSlivers) {
+  // Two tube ends facing each other, 12 and 17 segments around.
+  const SurfaceMesh a = make_tube({3.0, 10.0, 12, 6}), b = make_tube({3.0, 10.0, 17, 9});
+  const SurfaceMesh mesh = side_by_side(a, b, Vec3(0, 0, 11.0));
+  const SuturePair pair{loop(mesh, {3, 0, 10}), loop(mesh, {3, 0, 11})};
+  ASSERT_TRUE(pair.a.closed);
+  ASSERT_EQ(pair.a.vertices.size(), 12u);
+  ASSERT_EQ(pair.b.vertices.size(), 17u);
+  const MatchedSeams m = match_seams(mesh, {pair}, {});
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
+  EXPECT_TRUE(m.pairs[0].a.closed);
+  // The loops' first vertices are kept (they are the partners that start the suture).
+  EXPECT_EQ(m.edit.mesh.position(m.pairs[0].a.vertices[0]), mesh.position(pair.a.vertices[0]));
+  EXPECT_EQ(m.edit.mesh.position(m.pairs[0].b.vertices[0]), mesh.position(pair.b.vertices[0]));
+  // Points on the old polygons: at radius 3 at the vertices, inside it only along a chord.
+  for (const auto* c : {&m.pairs[0].a, &m.pairs[0].b})
+    for (const VertexId v : c->vertices) {
+      const Vec3 p = m.edit.mesh.position(v);
+      EXPECT_LE(std::hypot(p.x(), p.y()), 3.0 + 1e-12);
+      EXPECT_GE(std::hypot(p.x(), p.y()), 3.0 * std::cos(M_PI / 12.0) - 1e-12);
+    }
+  const JoinResult j = join(m.edit.mesh, m.pairs);
+  EXPECT_EQ(j.sutures[0].inserted_a + j.sutures[0].inserted_b, 0);
+  EXPECT_GE(m.edit.after.min_angle_deg, 20.0);
+  EXPECT_LT(mesh_quality(join(mesh, {pair}).mesh).min_angle_deg, 20.0);
+}
+
+TEST(SeamMatch, AHeldChainVertexIsKeptAsABreakpointAndPairedAtItsFraction) {
+  const Strips s;
+  std::vector<bool> held(s.mesh.num_vertices(), false);
+  const VertexId kept = s.pair.b.vertices[2];  // at 2/7 of chain b
+  held[kept.index()] = true;
+  ResampleChainsParams params;
+  params.constrained_vertices = held;
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
+  bool found = false;
+  for (const VertexId v : m.pairs[0].b.vertices) found = found || m.edit.mesh.position(v) == s.mesh.position(kept);
+  EXPECT_TRUE(found);
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
+  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
+  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+}
+
+TEST(SeamMatch, ResampleChainsChecksItsInput) {
+  const Strips s;
+  ResampleChainsParams p;
+  p.target_edge_length = 1.0;
+  EXPECT_THROW(resample_chains(s.mesh, {{s.pair.a, {0.5, 0.25}}}, p), InvalidArgument);
+  EXPECT_THROW(resample_chains(s.mesh, {{s.pair.a, {0.0}}}, p), InvalidArgument);
+  BoundaryChain backwards = s.pair.a;
+  std::reverse(backwards.vertices.begin(), backwards.vertices.end());
+  EXPECT_THROW(resample_chains(s.mesh, {{backwards, {0.5}}}, p), InvalidArgument);
+  p.target_edge_length = 0.0;
+  EXPECT_THROW(resample_chains(s.mesh, {{s.pair.a, {0.5}}}, p), InvalidArgument);
+  EXPECT_EQ(equal_fractions(4), (std::vector<double>{0.25, 0.5, 0.75}));
+}
+
+TEST(SeamMatch, InOrderPairingRefusesChainsOfDifferentCounts) {
+  const Strips s;
+  JoinParams jp;
+  jp.pairing = JoinPairing::InOrder;
+  EXPECT_THROW(join(s.mesh, {s.pair}, jp), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace sutura::engine
