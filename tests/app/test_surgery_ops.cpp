@@ -311,6 +311,60 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherAnIncisionIsRemeshed) {
   EXPECT_FALSE(remeshed(kHeader2 + kTube + off, "v2off"));
 }
 
+const std::string kHeader3 = "{\"format\": \"sutura-session\", \"version\": 3}\n";
+
+// Two strips whose facing edges have 4 and 7 pieces, 0.01 mm apart, sutured.
+const std::string kStripsJoin =
+    "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 4, "
+    "\"segments_length\": 10, \"segments_width\": 4}\n"
+    "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 4, "
+    "\"segments_length\": 10, \"segments_width\": 7, \"translate\": [10.01, 0, 0], \"append\": true}\n"
+    "{\"op\": \"join\", \"object\": \"s\", \"chains\": [{\"from\": [10, -2, 0], \"to\": [10, 2, 0]}, "
+    "{\"from\": [10.01, 2, 0], \"to\": [10.01, -2, 0]}]}\n";
+
+nlohmann::json action(const ReplayResult& r, const std::string& op) {
+  for (const auto& a : r.report["actions"])
+    if (a["op"] == op) return a;
+  return {};
+}
+
+// Version 3 matches the seams before a join (nothing inserted, no sliver beside the seam);
+// version 2 sessions pair by arc length as they did.
+TEST(SurgeryOps, TheSessionVersionDecidesWhetherAJoinMatchesItsSeams) {
+  const ReplayResult v3 = run(kHeader3 + kStripsJoin, "join_v3");
+  const nlohmann::json j3 = action(v3, "join");
+  ASSERT_TRUE(j3.contains("remesh"));
+  EXPECT_EQ(j3["sutures"][0]["inserted_a"].get<int>() + j3["sutures"][0]["inserted_b"].get<int>(), 0);
+  EXPECT_GE(v3.report["objects"]["s"]["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
+
+  const ReplayResult v2 = run(kHeader2 + kStripsJoin, "join_v2");
+  const nlohmann::json j2 = action(v2, "join");
+  EXPECT_FALSE(j2.contains("remesh"));
+  EXPECT_GT(j2["sutures"][0]["inserted_a"].get<int>() + j2["sutures"][0]["inserted_b"].get<int>(), 0);
+  EXPECT_LT(v2.report["objects"]["s"]["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
+
+  std::string off = kStripsJoin;
+  off.insert(off.size() - 2, ", \"remesh\": false");
+  EXPECT_FALSE(action(run(kHeader3 + off, "join_v3_off"), "join").contains("remesh"));
+}
+
+// A version 3 resection remeshes the band around its cut and matches the anastomosis's loops:
+// every element's rest shape keeps 20 degrees (version 2: the plane cut's slivers remain).
+TEST(SurgeryOps, AVersion3AnastomosisLeavesNoSliver) {
+  const std::string resect =
+      "{\"op\": \"resect\", \"object\": \"t\", \"planes\": [{\"origin\": [0, 0, 8.3], \"normal\": [0.1, 0, 1]}, "
+      "{\"origin\": [0, 0, 11.6], \"normal\": [0, 0.05, 1]}], \"anastomosis\": true}\n";
+  const ReplayResult v3 = run(kHeader3 + kTube + resect, "resect_v3");
+  const nlohmann::json a3 = action(v3, "resect");
+  ASSERT_TRUE(a3.contains("remesh"));
+  ASSERT_TRUE(a3.contains("seam_remesh"));
+  EXPECT_EQ(a3["anastomosis"]["inserted_a"].get<int>() + a3["anastomosis"]["inserted_b"].get<int>(), 0);
+  EXPECT_GE(v3.report["objects"]["t"]["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
+  const ReplayResult v2 = run(kHeader2 + kTube + resect, "resect_v2");
+  EXPECT_FALSE(action(v2, "resect").contains("remesh"));
+  EXPECT_LT(v2.report["objects"]["t"]["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
+}
+
 }  // namespace
 
 namespace {

@@ -44,7 +44,8 @@ json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, 
   json chains = json::array();
   for (const auto* c : {&a, &b})
     chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
-  json op = {{"op", "join"}, {"object", object}, {"chains", chains}};
+  // Recorded, as for incise: matched seams whatever the version of a session continued.
+  json op = {{"op", "join"}, {"object", object}, {"chains", chains}, {"remesh", true}};
   if (onto_b) op["placement"] = "onto_b";
   return op;
 }
