@@ -251,11 +251,15 @@ json Run::execute(const PatchOp& op) {
     };
     params.left_segments = segments(first.lip_left, first.edge_left);
     params.right_segments = segments(first.lip_right, first.edge_right);
+    // The lips' band is graded from the patch's spacing to the host's (a patch is cut no
+    // finer than a fifth of its width, a fine host is finer than that).
+    engine::ResampleChainsParams rp = seam_params(obj, first.edge_length);
+    rp.grading = 1.5;
     const engine::ResampleChainsResult r = engine::resample_chains(
         obj.mesh,
         {{first.lip_left, engine::equal_fractions(params.left_segments)},
          {first.lip_right, engine::equal_fractions(params.right_segments)}},
-        seam_params(obj, first.edge_length));
+        rp);
     engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
     remeshed = resample_json(r, first.edge_length);
   }

@@ -210,14 +210,17 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   for (std::size_t v = 0; v < nv; ++v)
     if (degree[v] != 0 && degree[v] != 2) in.constrained_vertices[v] = true;
 
-  // Bands: coarsest first. Band i has edge length L g^i and reaches 2 L g^i beyond band i-1.
-  if (params.grading > 1.0 && !params.grading_curve.empty() && host > L) {
+  // Bands: the outermost first. Band i has edge length L g^i (L / g^i where the region is
+  // finer than L: a seam at a patch's spacing in a finer host) and reaches twice that beyond
+  // band i-1, until the length reaches the region's own.
+  const double step = host > L ? params.grading : 1.0 / params.grading;
+  if (params.grading > 1.0 && !params.grading_curve.empty() && std::abs(host - L) > 1e-3 * L) {
     std::vector<detail::RemeshBand> bands;
     double length = L, reach = 0.0;
-    while (length < host && bands.size() < 32) {
+    while ((host > L ? length < host : length > host) && bands.size() < 32) {
       reach += 2.0 * length;
       bands.push_back({length, reach});
-      length *= params.grading;
+      length *= step;
     }
     in.bands.assign(bands.rbegin(), bands.rend());
     in.band_curve = params.grading_curve;

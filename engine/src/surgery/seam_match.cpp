@@ -104,7 +104,20 @@ ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<
   EditMaps split_maps;
   const SurfaceMesh split = std::move(soup).build(split_maps);
 
-  RemeshParams rp = band_around(split, lines, params.band_width, params.target_edge_length);
+  double band_width = params.band_width;
+  std::vector<Vec3> curve;
+  if (params.grading > 1.0) {
+    // Wide enough for the bands from the target length to the spacing around the chains.
+    const double around = band_around(split, lines, 0.0).target_edge_length;
+    const double ratio = std::max(around, params.target_edge_length) /
+                         std::min(around, params.target_edge_length);
+    band_width += 2.0 * std::ceil(std::log(ratio) / std::log(params.grading));
+    for (const auto& line : lines)
+      for (const VertexId v : line) curve.push_back(split.position(v));
+  }
+  RemeshParams rp = band_around(split, lines, band_width, params.target_edge_length);
+  rp.grading = params.grading;
+  rp.grading_curve = std::move(curve);
   const auto carried = carry_edges(split_maps, split, params.constrained_edges);
   rp.constrained_edges.insert(rp.constrained_edges.end(), carried.begin(), carried.end());
   rp.constrained_vertices.assign(split.num_vertices(), false);

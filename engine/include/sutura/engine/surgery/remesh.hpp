@@ -44,13 +44,14 @@ std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vect
                                         double radius);
 
 struct RemeshParams {
-  /// mm, > 0: edge length at the finest (near `grading_curve`, or everywhere without one).
+  /// mm, > 0: edge length near `grading_curve` (everywhere without one).
   double target_edge_length = 0.0;
   /// Faces to remesh (any order); none given = the whole surface, an empty list is an error.
   std::optional<std::vector<FaceId>> region;
-  /// >= 1: with a curve, the edge length grows by this factor per band of the current
-  /// length away from the curve, up to the region's own mean edge length (nested bands, the
-  /// outer ones remeshed first). 1 = uniform.
+  /// >= 1: with a curve, the edge length changes by this factor per band of the current
+  /// length away from the curve towards the region's own mean edge length (grows where the
+  /// region is coarser, shrinks where it is finer; nested bands, the outer ones remeshed
+  /// first). 1 = uniform.
   double grading = 1.0;
   /// Polyline (mm) near which the mesh is finest; empty = uniform.
   std::vector<Vec3> grading_curve;

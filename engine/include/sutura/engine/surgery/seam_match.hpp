@@ -33,6 +33,11 @@ struct ResampleChainsParams {
   double target_edge_length = 0.0;
   /// The band: faces with a corner within this many target lengths of a chain.
   double band_width = 2.0;
+  /// >= 1: > 1 grades the band from the target length at the chains to the spacing around
+  /// it (RemeshParams::grading; the band widened to hold the grading). The chains, joined in
+  /// the order given, are the grading curve: give chains that continue one another (the two
+  /// lips of an incision).
+  double grading = 1.0;
   /// Kept by the remesh as they are (see RemeshParams): held vertices, earlier seams.
   std::vector<bool> constrained_vertices;
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
