@@ -52,7 +52,9 @@ TEST(StageMachine, EveryDisabledActionExplainsWhy) {
   for (int s = 0; s < 3; ++s) {
     for (int a = 0; a <= static_cast<int>(Action::ContinuePlanning); ++a) {
       auto why = m.why_disabled(static_cast<Action>(a));
-      if (why) EXPECT_GT(why->size(), 10u) << to_string(static_cast<Action>(a));
+      if (why) {
+        EXPECT_GT(why->size(), 10u) << to_string(static_cast<Action>(a));
+      }
     }
     if (s == 0) { m.mesh_loaded(); m.simulation_started(); }
     else if (s == 1) m.simulation_finished();

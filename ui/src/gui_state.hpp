@@ -20,7 +20,7 @@
 namespace sutura::ui {
 
 /// What a left click in the 3-D view does (Plan stage tools; Navigate only orbits).
-enum class Tool { Navigate, Incise, Suture, Fix, Patch };
+enum class Tool { Navigate, Incise, Suture, Fix, Patch, Remesh };
 
 struct IncisionDraft {
   std::vector<engine::Vec3> points;
@@ -45,6 +45,16 @@ struct PatchDraft {
   int shape = 0;                   ///< 0 ellipse, 1 diamond, 2 triangle
   float width = 4.0f;              ///< mm
   float youngs_modulus = 2.0f, poisson_ratio = 0.45f, thickness = 0.5f;
+};
+
+/// Remesh: the faces within `radius` of the clicked points (of the whole object without
+/// any) to `target_edge_length` (0 = their own mean), graded away from the points.
+struct RemeshDraft {
+  std::vector<engine::Vec3> points;
+  float radius = 3.0f;               ///< mm
+  float target_edge_length = 0.0f;   ///< mm, 0 = the region's mean edge length
+  float grading = 1.0f;              ///< >= 1
+  int iterations = 3;
 };
 
 struct MaterialDraft {
@@ -82,6 +92,7 @@ struct GuiState {
   std::size_t object = 0;  ///< selected object (index into the workspace)
   Tool tool = Tool::Navigate;
   IncisionDraft incision;
+  RemeshDraft remesh;
   SutureDraft suture;
   FixDraft fix;
   PatchDraft patch;

@@ -57,6 +57,20 @@ json patch_op(const std::string& object, const std::string& shape, const engine:
           {"remesh", true}};
 }
 
+json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near, double radius,
+              double target_edge_length, double grading, int iterations) {
+  json op = {{"op", "remesh"}, {"object", object}, {"iterations", iterations}};
+  if (target_edge_length > 0.0) op["target_edge_length"] = target_edge_length;
+  if (!near.empty()) {
+    json pts = json::array();
+    for (const auto& p : near) pts.push_back(point_json(p));
+    op["near"] = pts;
+    op["radius"] = radius;
+    if (grading > 1.0) op["grading"] = grading;
+  }
+  return op;
+}
+
 json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
   json op = {{"op", "simulate"}, {"steps", steps}, {"dt", dt}};
   // The scheme is recorded, so the session replays the same way should the default change

@@ -37,6 +37,11 @@ nlohmann::json join_op(const std::string& object, const ChainEnds& a, const Chai
 nlohmann::json patch_op(const std::string& object, const std::string& shape,
                         const engine::Vec3& lip_start, const engine::Vec3& lip_end, double width,
                         const nlohmann::json& material);
+/// Remesh of the faces within `radius` of the polyline through `near` (the whole object when
+/// empty) to `target_edge_length` (0: the region's mean), graded by `grading` (> 1, with
+/// `near` only) away from it.
+nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near,
+                         double radius, double target_edge_length, double grading, int iterations);
 /// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);

@@ -102,6 +102,7 @@ void tool_choice(GuiState& s) {
   ImGui::NewLine();
   tool_radio("Fix ends", Tool::Fix, s.why_not(Action::FixRegion));
   tool_radio("Patch", Tool::Patch, s.why_not(Action::AddPatch, "patch"));
+  tool_radio("Remesh", Tool::Remesh, s.why_not(Action::Remesh, "remesh"));
   ImGui::NewLine();
 }
 
@@ -161,6 +162,30 @@ void patch_controls(GuiState& s) {
   }
 }
 
+void remesh_controls(GuiState& s) {
+  ImGui::TextWrapped("Click points on the surface to remesh the faces near the line through "
+                     "them (%zu point(s)); none: the whole object. Sutures, material borders, open ends and held "
+                     "vertices are kept; the state and rest shape follow.",
+                     s.remesh.points.size());
+  ImGui::SliderFloat("radius [mm]", &s.remesh.radius, 0.5f, 20.0f, "%.1f");
+  ImGui::SliderFloat("edge length [mm]", &s.remesh.target_edge_length, 0.0f, 3.0f, "%.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the region's own mean edge length.");
+  ImGui::SliderFloat("grading", &s.remesh.grading, 1.0f, 3.0f, "%.2f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Growth of the edge length per band away from the clicked points (1 = uniform).");
+  ImGui::SliderInt("iterations", &s.remesh.iterations, 1, 10);
+  if (gated_button(s.widgets, s.remesh.points.empty() ? "Remesh object" : "Remesh region",
+                   s.why_not(Action::Remesh, "remesh")) &&
+      s.selected()) {
+    if (s.perform(remesh_op(s.selected()->name, s.remesh.points, s.remesh.radius,
+                            s.remesh.target_edge_length, s.remesh.grading, s.remesh.iterations),
+                  "Remeshed '" + s.selected()->name + "'"))
+      s.remesh.points.clear();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel##remesh")) cancel_draft(s);
+}
+
 void load_controls(GuiState& s) {
   ImGui::SliderFloat("pressure [mmHg]", &s.pressure_mmhg, -120.0f, 120.0f, "%.0f");
   if (gated_button(s.widgets, "Apply pressure", s.why_not(Action::EditMaterial),
@@ -206,6 +231,7 @@ void plan_section(GuiState& s) {
                                    : "Click near a boundary loop (a vessel end) to fix it.");
       break;
     case Tool::Patch: patch_controls(s); break;
+    case Tool::Remesh: remesh_controls(s); break;
   }
   ImGui::Separator();
   if (noted_tree_node(s.widgets, "Material of the selected object")) {
@@ -247,6 +273,7 @@ void cancel_draft(GuiState& s) {
   s.incision.points.clear();
   s.suture.clicks.clear();
   s.patch.ends.clear();
+  s.remesh.points.clear();
 }
 
 void undo(GuiState& s) {

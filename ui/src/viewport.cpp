@@ -50,6 +50,7 @@ void click(GuiState& s) {
   switch (s.tool) {
     case Tool::Navigate: break;
     case Tool::Incise: s.incision.points.push_back(h.hit.point); break;
+    case Tool::Remesh: s.remesh.points.push_back(h.hit.point); break;
     case Tool::Suture:
       if (s.suture.clicks.size() < 4) s.suture.clicks.push_back(on_boundary);
       break;
@@ -137,6 +138,7 @@ Overlays viewport_overlays(const GuiState& s) {
       markers(s.suture.clicks, {0.05f, 0.35f, 0.1f}, 10.0f);
     }
     if (s.tool == Tool::Patch) markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
+    if (s.tool == Tool::Remesh) markers(s.remesh.points, {0.6f, 0.2f, 0.8f}, 10.0f);
     if (s.tool == Tool::Fix) markers(s.fix.clicks, {0.95f, 0.75f, 0.05f}, 12.0f);
     // Hovered boundary loop: what a Fix or Suture click would take.
     if (s.hover && s.hover->boundary_loop >= 0 && obj && s.hover->object == s.object &&

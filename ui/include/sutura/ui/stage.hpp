@@ -17,6 +17,7 @@ enum class Action {
   Incise,
   Suture,
   AddPatch,
+  Remesh,
   FixRegion,
   EditMaterial,
   Undo,
