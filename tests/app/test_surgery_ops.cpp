@@ -369,6 +369,31 @@ TEST(SurgeryOps, AVersion3AnastomosisLeavesNoSliver) {
 
 namespace {
 
+// Equilibria that hold already (no loads, a slit re-joined without a gap): the solve and the
+// relaxation converge at once, the shape unchanged, instead of failing on a residual
+// tolerance relative to round-off (issue 27: ../shared/robustness/wrong_failure_*.jsonl).
+TEST(SurgeryOps, AnEquilibriumThatHoldsAlreadyConvergesAtOnce) {
+  const std::string held =
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 30, "
+      "\"segments_around\": 24, \"segments_along\": 20}\n"
+      "{\"op\": \"material\", \"object\": \"t\", \"youngs_modulus\": 1, \"poisson_ratio\": 0.45, \"thickness\": 0.5}\n"
+      "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": \"all\"}\n";
+  const ReplayResult solved = run(kHeader + held + "{\"op\": \"solve\"}\n", "no_loads");
+  EXPECT_EQ(solved.report["status"], "ok");
+  EXPECT_EQ(action(solved, "solve")["iterations"].get<int>(), 0);
+  const ReplayResult generated = run(kHeader + held, "no_loads_ref");
+  EXPECT_EQ(solved.report["objects"]["t"]["position_hash"], generated.report["objects"]["t"]["position_hash"]);
+
+  const std::string rejoin =
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 8], [4, 0, 22]]}\n"
+      "{\"op\": \"join\", \"object\": \"t\", \"chains\": [{\"from\": [4, 0, 8], \"to\": [4, 0, 22], \"via\": [4, 0.1, 15]}, "
+      "{\"from\": [4, 0, 22], \"to\": [4, 0, 8], \"via\": [4, -0.1, 15]}]}\n"
+      "{\"op\": \"simulate\", \"objects\": [\"t\"], \"relax\": {\"steps\": 2}}\n";
+  const ReplayResult relaxed = run(kHeader + held + rejoin, "rejoin_relax");
+  EXPECT_EQ(relaxed.report["status"], "ok");
+  EXPECT_EQ(action(relaxed, "simulate")["s_reached"].get<double>(), 1.0);
+}
+
 // The distance op records the Hausdorff distance between two objects for `check`: two tubes
 // 0.1 mm apart in radius (closed form: test_hausdorff.cpp).
 TEST(SurgeryOps, DistanceOpRecordsTheHausdorffDistanceForCheck) {

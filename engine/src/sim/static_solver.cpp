@@ -39,6 +39,18 @@ double characteristic_length(const ShellState& s) {
   return std::max(box.diagonal().norm(), 1e-12);
 }
 
+// The residual that coordinate round-off alone leaves (N): 1e-13 E t L with the stiffest
+// material's E t and the state's size L (about ten times the floor measured: 1e-14 E t L).
+// A state already at equilibrium with no loads (a solve without loads, a slit re-joined with
+// no gap) has a round-off first residual and no load, so a tolerance relative to those alone
+// could never be met; below this floor the residual is zero to the arithmetic.
+double roundoff_residual(const ShellSystem& sys, const ShellState& state) {
+  double et = 0.0;
+  if (sys.problem.materials)
+    for (const ShellMaterial& m : *sys.problem.materials) et = std::max(et, m.youngs_modulus * m.thickness);
+  return 1e-13 * et * characteristic_length(state);
+}
+
 // A trial state that collapses a triangle further than the current state has (below
 // min_area_ratio of its rest area) counts as non-finite, so the line search backs off: the
 // floor for trials from `state` (0 = no test).
@@ -89,7 +101,7 @@ std::string record_iterate(const Evaluation& ev, double lambda, int it, double s
 // Newton iterations at a fixed load factor. Returns an empty string on convergence, else why
 // it failed (the caller restores the state).
 //
-// Convergence: |r| <= tol * max(|f_ext|, |r_0|), or the energy norm of the Newton increment
+// Convergence: |r| <= max(tol * max(|f_ext|, |r_0|), roundoff_residual), or the energy norm of the Newton increment
 // |du . r| <= tol^2 * |du_0 . r_0| (the usual FE energy criterion). The second is needed
 // because coordinate round-off puts a floor of about 1e-14 E t L under the residual, which a
 // purely relative residual test at small loads cannot pass.
@@ -109,6 +121,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
   Evaluation ev = evaluate(sys, map, state, lambda, true, true, &assembler);
   const double ref =
       std::max({ev.external_norm, ev.residual.norm(), params.force_reference, 1e-300});
+  const double roundoff = roundoff_residual(sys, state);
   double step_length = 1.0;
   double first_work = -1.0;
   int internal_steps = 0;  // consecutive steps with the internal-force tangent (below)
@@ -120,11 +133,11 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
                                             collapsed_trial, params, result);
         !failed.empty())
       return failed;
-    if (rnorm <= params.tolerance * ref) return {};
+    if (rnorm <= std::max(params.tolerance * ref, roundoff)) return {};
     if (it == params.max_iterations) {
       std::ostringstream m;
       m << "no convergence in " << params.max_iterations << " Newton iterations (residual "
-        << rnorm << ", needed " << params.tolerance * ref << ")";
+        << rnorm << ", needed " << std::max(params.tolerance * ref, roundoff) << ")";
       return m.str();
     }
     ++result.iterations;
@@ -268,6 +281,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
   bool have_tangent = trial_tangent;
   const double ref =
       std::max({ev.external_norm, ev.residual.norm(), params.force_reference, 1e-300});
+  const double roundoff = roundoff_residual(sys, state);
   detail::LbfgsHistory lbfgs(kDepth);
   // Residual norms since the factorisation in use (the first: where it was made); empty when
   // the factorisation came from the previous solve.
@@ -293,7 +307,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
                                             collapsed_trial, params, result);
         !failed.empty())
       return failed;
-    if (rnorm <= params.tolerance * ref) {
+    if (rnorm <= std::max(params.tolerance * ref, roundoff)) {
       ws.keep_factor(n);
       return {};
     }
@@ -302,7 +316,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
       std::ostringstream m;
       m << "no convergence in " << newton_steps << " Newton iterations";
       if (it > newton_steps) m << " and " << it - newton_steps << " quasi-Newton steps";
-      m << " (residual " << rnorm << ", needed " << params.tolerance * ref << ")";
+      m << " (residual " << rnorm << ", needed " << std::max(params.tolerance * ref, roundoff) << ")";
       return m.str();
     }
     // The step: Newton (Levenberg-Marquardt) on a new tangent, or quasi-Newton on the last
