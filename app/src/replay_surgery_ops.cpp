@@ -57,11 +57,31 @@ json remesh_object(SceneObject& obj, engine::RemeshParams p, engine::EditMaps* m
 }
 
 // Constraints of a seam resampling: the object's held vertices and feature lines.
+// Faces whose current shape is far from their rest shape: an edge stretched or shortened by a
+// factor of more than 2 (a patch laid compressed into a closed slit). A seam remesh leaves them
+// as they are (engine::ResampleChainsParams::frozen_faces).
+std::vector<bool> distorted_faces(const SceneObject& obj) {
+  constexpr double kFactor = 2.0;
+  std::vector<bool> out(obj.mesh.num_faces(), false);
+  const auto& faces = obj.mesh.faces();
+  for (std::size_t f = 0; f < faces.size() && f < obj.sim.rest.elements.size(); ++f) {
+    const auto& X = obj.sim.rest.elements[f].X;
+    for (int k = 0; k < 3 && !out[f]; ++k) {
+      const double now = (obj.mesh.positions()[std::size_t(faces[f][k])] -
+                          obj.mesh.positions()[std::size_t(faces[f][(k + 1) % 3])]).norm();
+      const double rest = (X[k] - X[(k + 1) % 3]).norm();
+      out[f] = !(now <= kFactor * rest && rest <= kFactor * now);
+    }
+  }
+  return out;
+}
+
 engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length) {
   engine::ResampleChainsParams p;
   p.target_edge_length = target_edge_length;
   p.constrained_vertices = kept_vertices(obj);
   p.constrained_edges = feature_edges(obj);
+  p.frozen_faces = distorted_faces(obj);
   return p;
 }
 

@@ -116,6 +116,21 @@ ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<
       for (const VertexId v : line) curve.push_back(split.position(v));
   }
   RemeshParams rp = band_around(split, lines, band_width, params.target_edge_length);
+  std::vector<bool> frozen_vertex(split.num_vertices(), false);
+  if (!params.frozen_faces.empty()) {
+    if (params.frozen_faces.size() != mesh.num_faces())
+      throw InvalidArgument("resample_chains: frozen_faces has the wrong size");
+    std::vector<FaceId> region;
+    for (const FaceId f : *rp.region) {
+      if (params.frozen_faces[split_maps.faces[f.index()].parent.index()]) {
+        for (const auto v : split.faces()[f.index()]) frozen_vertex[std::size_t(v)] = true;
+      } else {
+        region.push_back(f);
+      }
+    }
+    if (region.empty()) throw InvalidArgument("resample_chains: every face beside the chains is frozen");
+    rp.region = std::move(region);
+  }
   rp.grading = params.grading;
   rp.grading_curve = std::move(curve);
   const auto carried = carry_edges(split_maps, split, params.constrained_edges);
@@ -136,6 +151,8 @@ ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<
     for (const VertexId v : line) rp.removed_boundary_vertices[v.index()] = true;
   for (const auto& p : points)
     for (const int v : p) rp.constrained_vertices[std::size_t(v)] = true;
+  for (std::size_t v = 0; v < split.num_vertices(); ++v)
+    if (frozen_vertex[v]) rp.constrained_vertices[v] = true, rp.removed_boundary_vertices[v] = false;
   RemeshResult r = remesh(split, rp);
 
   std::vector<VertexId> image(split.num_vertices());
@@ -200,28 +217,61 @@ std::vector<double> vertex_fractions(const SurfaceMesh& mesh, const BoundaryChai
 // The inner fractions (along chain a) of one pair's common points: `segments` pieces, the
 // held inner vertices of both chains as breakpoints (b's at 1 - its own fraction: it runs the
 // other way), each stretch between breakpoints cut into pieces in proportion to its length.
+// A chain edge of a frozen face is a stretch of its own, one piece: both its ends are
+// breakpoints that are never merged with a neighbour.
 std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& pair, int segments,
-                                     const std::vector<bool>& held) {
-  std::vector<double> breaks{0.0, 1.0};
+                                     const std::vector<bool>& held, const std::vector<bool>& frozen) {
+  struct Break {
+    double at;
+    bool strong;  // the end of a frozen edge: kept whatever its neighbours
+  };
+  std::vector<Break> breaks{{0.0, true}, {1.0, true}};
+  std::vector<std::pair<double, double>> whole;  // frozen stretches, in a's fractions
   for (const bool on_b : {false, true}) {
     const BoundaryChain& c = on_b ? pair.b : pair.a;
     const std::vector<double> f = vertex_fractions(mesh, c);
-    for (std::size_t i = 1; i < c.vertices.size(); ++i)
-      if (!held.empty() && held[c.vertices[i].index()] && (c.closed || i + 1 < c.vertices.size()))
-        breaks.push_back(on_b ? 1.0 - f[i] : f[i]);
+    const auto along_a = [&](double x) { return on_b ? 1.0 - x : x; };
+    const std::size_t n = c.vertices.size();
+    for (std::size_t i = 1; i < n; ++i)
+      if (!held.empty() && held[c.vertices[i].index()] && (c.closed || i + 1 < n))
+        breaks.push_back({along_a(f[i]), false});
+    if (frozen.empty()) continue;
+    for (std::size_t i = 0; i + (c.closed ? 0 : 1) < n; ++i) {
+      const HalfedgeId h = detail::find_halfedge(mesh, c.vertices[i], c.vertices[(i + 1) % n]);
+      if (!h.valid() || !frozen[SurfaceMesh::face(h).index()]) continue;
+      const double u = along_a(f[i]), w = along_a(i + 1 < n ? f[i + 1] : 1.0);
+      breaks.push_back({u, true});
+      breaks.push_back({w, true});
+      whole.emplace_back(std::min(u, w), std::max(u, w));
+    }
   }
-  std::sort(breaks.begin(), breaks.end());
-  // Breakpoints closer than a third of a piece are one (the join pairs them within 0.4).
-  std::vector<double> kept{0.0};
-  for (const double b : breaks)
-    if (b - kept.back() > 1.0 / (3.0 * segments) && 1.0 - b > 1.0 / (3.0 * segments)) kept.push_back(b);
-  kept.push_back(1.0);
+  std::sort(breaks.begin(), breaks.end(), [](const Break& x, const Break& y) {
+    return x.at < y.at || (x.at == y.at && x.strong > y.strong);
+  });
+  // Breakpoints closer than a third of a piece are one (the join pairs them within 0.4); a
+  // strong one displaces a weak one.
+  const double close = 1.0 / (3.0 * segments);
+  std::vector<Break> kept{breaks.front()};
+  for (std::size_t i = 1; i < breaks.size(); ++i) {
+    const Break& b = breaks[i];
+    if (b.at - kept.back().at > close || (b.strong && b.at > kept.back().at)) {
+      if (b.strong && b.at - kept.back().at <= close && !kept.back().strong) kept.back() = b;
+      else kept.push_back(b);
+    }
+  }
+  if (kept.back().at < 1.0) {
+    if (1.0 - kept.back().at <= close && !kept.back().strong) kept.pop_back();
+    kept.push_back({1.0, true});
+  }
   std::vector<double> at;
   for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
-    const double span = kept[i + 1] - kept[i];
-    const long pieces = std::max(1L, std::lround(span * segments));
-    if (i > 0) at.push_back(kept[i]);
-    for (long k = 1; k < pieces; ++k) at.push_back(kept[i] + span * double(k) / double(pieces));
+    const double span = kept[i + 1].at - kept[i].at;
+    const double mid = kept[i].at + 0.5 * span;
+    const bool one = std::any_of(whole.begin(), whole.end(),
+                                 [&](const auto& w) { return w.first <= mid && mid <= w.second; });
+    const long pieces = one ? 1L : std::max(1L, std::lround(span * segments));
+    if (i > 0) at.push_back(kept[i].at);
+    for (long k = 1; k < pieces; ++k) at.push_back(kept[i].at + span * double(k) / double(pieces));
   }
   return at;
 }
@@ -231,12 +281,25 @@ std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& 
 MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
                          ResampleChainsParams params) {
   MatchedSeams m;
+  // The vertices the remesh keeps: held ones and the ends of constrained polylines (an earlier
+  // seam or a patch rim meeting the chain). Each must be a breakpoint of the common fractions;
+  // one left between two new points would be an unmatched vertex, and the join would insert a
+  // partner beside it (a needle triangle: 0.8 degrees after the widened anastomosis).
+  std::vector<bool> held = params.constrained_vertices;
+  held.resize(mesh.num_vertices(), false);
+  for (const auto& [u, w] : params.constrained_edges) {
+    if (!u.valid() || !w.valid() || u.index() >= held.size() || w.index() >= held.size()) continue;
+    HalfedgeId h = detail::find_halfedge(mesh, u, w);
+    if (!h.valid()) h = detail::find_halfedge(mesh, w, u);
+    if (h.valid() && mesh.is_boundary(h)) continue;  // along a chain: its inner vertices may go
+    held[u.index()] = held[w.index()] = true;
+  }
   std::vector<ChainResample> chains;
   double finest = HUGE_VAL;
   for (const SuturePair& p : pairs) {
     const double h = seam_spacing(mesh, p);
-    const std::vector<double> at = common_fractions(mesh, p, seam_segments(mesh, p, h),
-                                                    params.constrained_vertices);
+    const std::vector<double> at =
+        common_fractions(mesh, p, seam_segments(mesh, p, h), held, params.frozen_faces);
     std::vector<double> at_b;  // the same points along b, which runs the other way
     for (auto it = at.rbegin(); it != at.rend(); ++it) at_b.push_back(1.0 - *it);
     m.spacing.push_back(h);

@@ -128,6 +128,69 @@ TEST(SeamMatch, AHeldChainVertexIsKeptAsABreakpointAndPairedAtItsFraction) {
   EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
 }
 
+TEST(SeamMatch, TheEndOfAConstrainedPolylineOnAChainIsABreakpoint) {
+  // An earlier seam (an interior constrained edge) ends on chain b: the remesh keeps that end,
+  // so it must be one of the common points, or the join would insert a partner beside it.
+  const Strips s;
+  const VertexId end = s.pair.b.vertices[3];
+  VertexId inner;
+  for (const VertexId v : s.mesh.vertex_neighbors(end))
+    if (!s.mesh.is_boundary(v)) inner = v;
+  ASSERT_TRUE(inner.valid());
+  ResampleChainsParams params;
+  params.constrained_edges = {{end, inner}};
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
+  bool found = false;
+  for (const VertexId v : m.pairs[0].b.vertices) found = found || m.edit.mesh.position(v) == s.mesh.position(end);
+  EXPECT_TRUE(found);
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
+  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
+  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+}
+
+TEST(SeamMatch, FrozenFacesAreLeftAsTheyAreAndTheirChainEdgesWhole) {
+  const Strips s;
+  // Freeze the faces of strip b along its chain edge between its vertices 2 and 3.
+  std::vector<bool> frozen(s.mesh.num_faces(), false);
+  const VertexId u = s.pair.b.vertices[2], w = s.pair.b.vertices[3];
+  for (std::size_t f = 0; f < s.mesh.num_faces(); ++f) {
+    const FaceIndices& t = s.mesh.faces()[f];
+    const bool touches = std::count(t.begin(), t.end(), u.value) + std::count(t.begin(), t.end(), w.value) > 0;
+    if (touches) frozen[f] = true;
+  }
+  ResampleChainsParams params;
+  params.frozen_faces = frozen;
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
+  ASSERT_TRUE(m.edit.mesh.validate().ok());
+  // Every frozen face is still there, corner for corner.
+  const auto& x0 = s.mesh.positions();
+  const auto& x1 = m.edit.mesh.positions();
+  for (std::size_t f = 0; f < frozen.size(); ++f) {
+    if (!frozen[f]) continue;
+    bool found = false;
+    for (const FaceIndices& t : m.edit.mesh.faces()) {
+      bool same = true;
+      for (int k = 0; k < 3; ++k) same = same && x1[std::size_t(t[k])] == x0[std::size_t(s.mesh.faces()[f][k])];
+      found = found || same;
+    }
+    EXPECT_TRUE(found) << "frozen face " << f;
+  }
+  // u and w are consecutive common points of chain b, with their partners on a.
+  const auto& b = m.pairs[0].b.vertices;
+  std::size_t iu = b.size(), iw = b.size();
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (x1[b[k].index()] == x0[u.index()]) iu = k;
+    if (x1[b[k].index()] == x0[w.index()]) iw = k;
+  }
+  ASSERT_LT(iu, b.size());
+  ASSERT_LT(iw, b.size());
+  EXPECT_EQ(iw, iu + 1);
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), b.size());
+  EXPECT_EQ(join(m.edit.mesh, m.pairs).sutures[0].inserted_a, 0);
+  params.frozen_faces.assign(3, false);
+  EXPECT_THROW(match_seams(s.mesh, {s.pair}, params), InvalidArgument);
+}
+
 TEST(SeamMatch, ResampleChainsChecksItsInput) {
   const Strips s;
   ResampleChainsParams p;

@@ -41,6 +41,11 @@ struct ResampleChainsParams {
   /// Kept by the remesh as they are (see RemeshParams): held vertices, earlier seams.
   std::vector<bool> constrained_vertices;
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
+  /// Per face (empty or mesh-sized): faces left exactly as they are. For faces whose current
+  /// shape is far from their rest shape (a patch laid compressed into a closed slit): triangles
+  /// made in that shape would be distorted at rest (carry.hpp). Their vertices are held, and
+  /// match_seams makes their chain vertices breakpoints with no point between them.
+  std::vector<bool> frozen_faces;
 };
 
 struct ResampleChainsResult {
@@ -70,7 +75,9 @@ double seam_spacing(const SurfaceMesh& mesh, const SuturePair& pair, double min_
 int seam_segments(const SurfaceMesh& mesh, const SuturePair& pair, double spacing);
 
 /// Resamples every pair's two chains at one set of fractions (seam_segments pieces at its
-/// seam_spacing, held vertices of either chain kept as breakpoints at their own fraction) and
+/// seam_spacing; held vertices of either chain, ends of constrained edges meeting it and
+/// vertices of frozen faces kept as breakpoints at their own fraction, a frozen chain edge
+/// left whole) and
 /// remeshes around them, so that join(result.mesh, result.pairs) inserts no vertex. Same
 /// contract and cost as resample_chains.
 struct MatchedSeams {
