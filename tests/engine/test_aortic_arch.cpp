@@ -187,15 +187,17 @@ TEST(AorticArch, LsaOnlyVariantHasThreeAorticEnds) {
 
 TEST(AorticArch, FaceCountsAndMinimumAngles) {
   // Isotropic remeshing aims at equilateral triangles; 15 degrees is the usual bound below
-  // which shell elements (DKT, ANDES) lose accuracy.
+  // which shell elements (DKT, ANDES) lose accuracy, and a repaired mesh keeps 20 (issue 22):
+  // the generator's closing repair smooths every face below 22 (measured: 29.8, 26.2, 22.8,
+  // 24.4; the fine aorta had 18.8 before it).
   EXPECT_GT(coarse().aorta.num_faces(), 3000u);
   EXPECT_LT(coarse().aorta.num_faces(), 5000u);
   EXPECT_GT(fine().aorta.num_faces(), 18000u);
   EXPECT_LT(fine().aorta.num_faces(), 22000u);
-  EXPECT_GT(min_angle_deg(coarse().aorta), 15.0);
-  EXPECT_GT(min_angle_deg(coarse().pulmonary), 15.0);
-  EXPECT_GT(min_angle_deg(fine().aorta), 15.0);
-  EXPECT_GT(min_angle_deg(fine().pulmonary), 15.0);
+  EXPECT_GT(min_angle_deg(coarse().aorta), 22.0);
+  EXPECT_GT(min_angle_deg(coarse().pulmonary), 22.0);
+  EXPECT_GT(min_angle_deg(fine().aorta), 22.0);
+  EXPECT_GT(min_angle_deg(fine().pulmonary), 22.0);
   EXPECT_NEAR(coarse().aorta.mean_edge_length(), kArchCoarseEdgeLength, 0.15 * kArchCoarseEdgeLength);
   EXPECT_NEAR(fine().aorta.mean_edge_length(), kArchFineEdgeLength, 0.15 * kArchFineEdgeLength);
 }
