@@ -15,6 +15,7 @@
 #include "gui_command.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/app/session_runner.hpp"
 #include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
@@ -24,10 +25,22 @@ namespace {
 int run_replay(const std::string& session_file, const std::string& out_dir, bool quiet,
                int threads) {
   using namespace sutura::app;
-  const Session session = load_session(session_file);
   ReplayOptions options;
   options.out_dir = out_dir;
   options.threads = threads;
+  Session session;
+  try {
+    session = load_session(session_file);
+  } catch (const SessionError& error) {
+    // report.json is written for every outcome, a session that does not parse included.
+    try {
+      SessionRunner runner(session_file, "", options);
+      runner.write_report(runner.report("failed", error.what()));
+    } catch (const std::exception&) {
+      // The parse error matters more than a report that could not be written.
+    }
+    throw;
+  }
   options.progress = quiet ? nullptr : &std::cerr;
   // Long runs (a relaxation can take minutes) show where they stand, at most once a second
   // so a run of thousands of dynamics steps does not flood the terminal.

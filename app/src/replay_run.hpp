@@ -32,7 +32,11 @@ struct Run {
   /// Pushes the current workspace for undo and clears redo; called by every changing op.
   void remember();
 
-  // Output bookkeeping and the report (replay_scene_ops.cpp).
+  // Files this run reads: the session and every loaded mesh. No output may overwrite one.
+  std::vector<std::filesystem::path> inputs;
+
+  // Output bookkeeping and the report (replay_scene_ops.cpp). `output` throws
+  // std::invalid_argument for a path outside the output directory or one that is an input.
   std::filesystem::path output(const std::filesystem::path& relative);
   SceneObject& object(const std::string& name);
   json report(const std::string& status, const std::string& error, double total) const;

@@ -1,5 +1,7 @@
 // Execution of the scene ops (generate, load, snapshot, export, report) and the report.
 #include "replay_run.hpp"
+
+#include <algorithm>
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
@@ -14,6 +16,15 @@ namespace fs = std::filesystem;
 
 fs::path Run::output(const fs::path& relative) {
   fs::path p = resolve_output_path(options.out_dir, relative);
+  std::error_code ec;
+  if (!session.file.empty() && std::find(inputs.begin(), inputs.end(), session.file) == inputs.end())
+    inputs.push_back(session.file);
+  for (const fs::path& in : inputs)
+    if (fs::equivalent(p, in, ec))
+      throw std::invalid_argument("'" + relative.string() + "': is " +
+                                  (in == session.file ? "the session being replayed"
+                                                      : "an input of this run (" + in.string() + ")") +
+                                  "; outputs never overwrite an input");
   outputs.push_back(relative.generic_string());
   return p;
 }
@@ -85,6 +96,7 @@ json Run::execute(const LoadOp& op) {
   remember();
   engine::ImportOptions io;
   io.weld_tolerance = op.weld_tolerance;
+  inputs.push_back(op.file);
   const auto& obj = workspace.add(op.object, engine::load_mesh(op.file, io));
   return {{"object", op.object}, {"file", op.file.generic_string()},
           {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};

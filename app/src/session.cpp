@@ -1,5 +1,6 @@
 #include "sutura/app/session.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -92,11 +93,32 @@ Session parse_session(const std::string& text, const std::filesystem::path& file
     if (!raw.empty() && raw.back() == '\r') raw.pop_back();
     if (raw.find_first_not_of(" \t") == std::string::npos) continue;  // blank line
     json j;
+    // Duplicate keys are an error (nlohmann keeps the last silently: {"op": "material", ...,
+    // "op": "export"} would run an export). One set of keys per open object.
+    std::vector<std::vector<std::string>> keys;
+    std::string duplicate;
+    const json::parser_callback_t no_duplicates = [&](int, json::parse_event_t event, json& parsed) {
+      if (event == json::parse_event_t::object_start) keys.emplace_back();
+      else if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+      else if (event == json::parse_event_t::key && !keys.empty()) {
+        const std::string k = parsed.get<std::string>();
+        if (std::find(keys.back().begin(), keys.back().end(), k) != keys.back().end() && duplicate.empty())
+          duplicate = k;
+        keys.back().push_back(k);
+      }
+      return true;
+    };
     try {
-      j = json::parse(raw);
-    } catch (const json::parse_error& e) {
+      j = json::parse(raw, no_duplicates);
+    } catch (const json::out_of_range& e) {
+      // 406: a number such as 1e999 that no double holds.
+      throw SessionError(fname, line_no, "", "",
+                         std::string("a number is out of range (no finite double holds it): ") + e.what());
+    } catch (const json::exception& e) {
       throw SessionError(fname, line_no, "", "", std::string("not valid JSON: ") + e.what());
     }
+    if (!duplicate.empty())
+      throw SessionError(fname, line_no, "", duplicate, "appears twice in one object; each key once");
     if (!j.is_object()) throw SessionError(fname, line_no, "", "", "each line must be a JSON object");
 
     if (!have_header) {
@@ -126,15 +148,26 @@ Session parse_session(const std::string& text, const std::filesystem::path& file
 
 Session load_session(const std::filesystem::path& file) {
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec))
-    throw SessionError(file.string(), 0, "", "", "no such file");
-  if (std::filesystem::is_directory(file, ec))
+  const std::filesystem::file_status st = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(st)) throw SessionError(file.string(), 0, "", "", "no such file");
+  if (std::filesystem::is_directory(st))
     throw SessionError(file.string(), 0, "", "", "is a directory, not a session file");
+  // Checked before opening: opening a FIFO blocks until a writer comes, and a device such as
+  // /dev/zero never ends.
+  if (!std::filesystem::is_regular_file(st))
+    throw SessionError(file.string(), 0, "", "",
+                       "is not a regular file (a device, FIFO or socket); sessions are read from files");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SessionError(file.string(), 0, "", "", "cannot be opened for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_session(ss.str(), file);
+  // At most kMaxSessionBytes + 1 bytes are read, whatever the file grows to meanwhile.
+  std::string text(kMaxSessionBytes + 1, '\0');
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(std::size_t(in.gcount()));
+  if (text.size() > kMaxSessionBytes)
+    throw SessionError(file.string(), 0, "", "",
+                       "larger than " + std::to_string(kMaxSessionBytes >> 20) +
+                           " MiB, the size limit of a session file");
+  return parse_session(text, file);
 }
 
 }  // namespace sutura::app

@@ -433,3 +433,52 @@ TEST(Replay, TheThreadCountIsSetOnTheThreadThatRunsTheOp) {
   EXPECT_EQ(seen, 1);
   fs::remove_all(dir);
 }
+
+TEST(Replay, OutputsNeverOverwriteTheSessionOrALoadedMesh) {
+  const fs::path out = fresh_dir("no_overwrite");
+  sutura::engine::save_mesh(sutura::engine::make_tube({2.0, 6.0, 8, 3}), out / "tube.ply");
+  const std::string mesh_before = read_text(out / "tube.ply");
+  const auto write = [&](const fs::path& p, const std::string& body) {
+    std::ofstream(p, std::ios::binary) << R"({"format": "sutura-session", "version": 3})" "\n" << body;
+  };
+  // An export onto the mesh the session loaded.
+  write(out / "export.jsonl", R"({"op": "load", "object": "t", "file": "tube.ply"})" "\n"
+                              R"({"op": "export", "object": "t", "file": "tube.ply"})" "\n");
+  ReplayOptions options;
+  options.out_dir = out;
+  try {
+    replay(load_session(out / "export.jsonl"), options);
+    ADD_FAILURE() << "the export overwrote its input";
+  } catch (const SessionError& e) {
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(std::string(e.what()).find("input"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_text(out / "tube.ply"), mesh_before);
+  EXPECT_EQ(nlohmann::json::parse(read_text(out / "report.json"))["status"], "failed");
+  // A report op onto the session being replayed.
+  write(out / "r.json", R"({"op": "generate", "object": "t", "shape": "tube"})" "\n"
+                        R"({"op": "report", "file": "r.json"})" "\n");
+  const std::string session_before = read_text(out / "r.json");
+  EXPECT_THROW(replay(load_session(out / "r.json"), options), SessionError);
+  EXPECT_EQ(read_text(out / "r.json"), session_before);
+  // A session named report.json inside the output directory: the report is not written over it.
+  fs::rename(out / "r.json", out / "report.json");
+  write(out / "report.json", R"({"op": "generate", "object": "t", "shape": "tube"})" "\n");
+  const std::string named_report = read_text(out / "report.json");
+  EXPECT_ANY_THROW(replay(load_session(out / "report.json"), options));
+  EXPECT_EQ(read_text(out / "report.json"), named_report);
+}
+
+TEST(Replay, AParseErrorStillWritesAFailedReport) {
+  const fs::path out = fresh_dir("parse_error_report");
+  const fs::path session = out / "bad.jsonl";
+  std::ofstream(session, std::ios::binary) << R"({"format": "sutura-session", "version": 3})" "\n"
+                                           << R"({"op": "generate", "object": "t", "shape": "tube", "radius": 1e999})" "\n";
+  std::string err;
+  EXPECT_EQ(run_sutura("replay " + session.string() + " --out " + (out / "o").string() + " -q", &err), 1);
+  EXPECT_NE(err.find("bad.jsonl:2"), std::string::npos) << err;
+  ASSERT_TRUE(fs::exists(out / "o" / "report.json"));
+  const auto report = nlohmann::json::parse(read_text(out / "o" / "report.json"));
+  EXPECT_EQ(report["status"], "failed");
+  EXPECT_NE(report["error"].get<std::string>().find("out of range"), std::string::npos);
+}

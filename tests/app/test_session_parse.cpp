@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
 #include "sutura/app/session.hpp"
 
 using namespace sutura::app;
@@ -226,4 +232,57 @@ TEST(SessionLoad, BundledSessionsParse) {
     ++count;
   }
   EXPECT_GE(count, 1);
+}
+
+TEST(SessionLoad, DevicesAndFifosAreRefusedBeforeTheyAreOpened) {
+  // /dev/zero never ends and a FIFO blocks its reader until a writer comes: both would hang.
+  for (const std::string& path : {std::string("/dev/zero"), std::string("/dev/null")}) {
+    try {
+      load_session(path);
+      ADD_FAILURE() << path;
+    } catch (const SessionError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+  }
+  const auto fifo = std::filesystem::temp_directory_path() / ("sutura_fifo_" + std::to_string(::getpid()));
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THROW(load_session(fifo), SessionError);
+  std::filesystem::remove(fifo);
+}
+
+TEST(SessionLoad, AFileOverTheSizeLimitIsRefused) {
+  const auto big = std::filesystem::temp_directory_path() / ("sutura_big_" + std::to_string(::getpid()) + ".jsonl");
+  {
+    std::ofstream out(big, std::ios::binary);
+    out << kHeader;
+    const std::string blank(1 << 20, ' ');
+    for (std::size_t written = kHeader.size(); written <= kMaxSessionBytes; written += blank.size()) out << blank;
+  }
+  try {
+    load_session(big);
+    ADD_FAILURE() << "a session over the limit was read";
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("size limit"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(big);
+}
+
+TEST(SessionParse, DuplicateKeysAndNumberOverflowNameTheLine) {
+  // nlohmann keeps the last of two equal keys: {"op": "material", ..., "op": "export"} would
+  // silently run an export.
+  const SessionError dup = parse_error(kHeader + R"({"op": "generate", "object": "t", "shape": "tube", "object": "u"})" "\n");
+  EXPECT_EQ(dup.line(), 2);
+  EXPECT_EQ(dup.field(), "object");
+  EXPECT_NE(std::string(dup.what()).find("twice"), std::string::npos);
+  const SessionError nested = parse_error(kHeader + R"({"op": "snapshot", "file": "a.png", "camera": {"view": [1, 0, 0], "view": [0, 1, 0]}})" "\n");
+  EXPECT_EQ(nested.line(), 2);
+  EXPECT_EQ(nested.field(), "view");
+  // The same key in two different objects is fine.
+  EXPECT_NO_THROW(parse(R"({"op": "generate", "object": "t", "shape": "tube"})" "\n"
+                        R"({"op": "generate", "object": "u", "shape": "tube"})" "\n"));
+  const SessionError big = parse_error(kHeader + R"({"op": "generate", "object": "t", "shape": "tube", "radius": 1e999})" "\n");
+  EXPECT_EQ(big.line(), 2);
+  EXPECT_NE(std::string(big.what()).find("out of range"), std::string::npos) << big.what();
+  EXPECT_NE(std::string(big.what()).find("s.jsonl:2"), std::string::npos) << big.what();
 }

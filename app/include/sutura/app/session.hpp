@@ -6,6 +6,7 @@
 // reported before a minute of simulation is spent on lines 1-39. Unknown fields are errors
 // too (a misspelt optional field would otherwise be silently ignored).
 #include <array>
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -340,7 +341,12 @@ struct Session {
   std::vector<Action> actions;
 };
 
-/// Reads and checks a session file. Throws SessionError naming file, line and field.
+/// Largest session file read, bytes (64 MiB: the bundled sessions are under 20 kB, a GUI hour
+/// records a few hundred kB). The whole text is held in memory while it is parsed.
+inline constexpr std::size_t kMaxSessionBytes = std::size_t(64) << 20;
+
+/// Reads and checks a session file: a regular file (a FIFO or device is refused before it is
+/// opened) of at most kMaxSessionBytes. Throws SessionError naming file, line and field.
 Session load_session(const std::filesystem::path& file);
 
 /// Parses session text; `file` is used for messages and to resolve relative input paths.
