@@ -87,7 +87,7 @@ int run_info(const std::string& mesh_file, double weld_tolerance) {
   j["file"] = mesh_file;
   j["valid"] = report.ok();
   if (!report.ok()) j["problems"] = report.problems;
-  std::cout << j.dump(2) << "\n";
+  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";  // file names are any bytes
   return report.ok() ? 0 : 1;
 }
 
@@ -98,7 +98,7 @@ int run_distance(const std::string& a_file, const std::string& b_file, double sp
   nlohmann::json j = app::hausdorff_json(engine::hausdorff_distance(a, b, spacing));
   j["a"] = a_file;
   j["b"] = b_file;
-  std::cout << j.dump(2) << "\n";
+  std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";  // file names are any bytes
   return 0;
 }
 

@@ -59,7 +59,8 @@ json Run::report(const std::string& status, const std::string& error, double tot
 }
 
 void Run::write_report(const fs::path& relative, const json& r) {
-  engine::write_file_atomically(output(relative), r.dump(2) + "\n");
+  // Invalid UTF-8 (a file name is any bytes) becomes U+FFFD instead of failing the dump.
+  engine::write_file_atomically(output(relative), r.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
 }
 
 json Run::execute(const GenerateOp& op) {

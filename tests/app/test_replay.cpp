@@ -482,3 +482,19 @@ TEST(Replay, AParseErrorStillWritesAFailedReport) {
   EXPECT_EQ(report["status"], "failed");
   EXPECT_NE(report["error"].get<std::string>().find("out of range"), std::string::npos);
 }
+
+TEST(Replay, FileNamesThatAreNotUtf8AreReportedNotFatal) {
+  // A file name is any bytes; JSON text must be UTF-8. The name is written with U+FFFD.
+  const fs::path out = fresh_dir("not_utf8");
+  const fs::path mesh = out / std::string("tube\xff.ply");
+  sutura::engine::save_mesh(sutura::engine::make_tube({2.0, 6.0, 8, 3}), mesh);
+  std::string err;
+  EXPECT_EQ(run_sutura("info '" + mesh.string() + "' > " + (out / "info.json").string(), &err), 0) << err;
+  const auto info = nlohmann::json::parse(read_text(out / "info.json"));
+  EXPECT_NE(info["file"].get<std::string>().find("tube\xEF\xBF\xBD.ply"), std::string::npos);
+  const fs::path session = out / std::string("s\xfe.jsonl");
+  std::ofstream(session, std::ios::binary) << R"({"format": "sutura-session", "version": 3})" "\n"
+                                           << R"({"op": "generate", "object": "t", "shape": "tube"})" "\n";
+  EXPECT_EQ(run_sutura("replay '" + session.string() + "' --out " + (out / "o").string() + " -q", &err), 0) << err;
+  EXPECT_EQ(nlohmann::json::parse(read_text(out / "o" / "report.json"))["status"], "ok");
+}
