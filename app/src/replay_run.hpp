@@ -32,7 +32,8 @@ struct Run {
   /// Pushes the current workspace for undo and clears redo; called by every changing op.
   void remember();
 
-  // Files this run reads: the session and every loaded mesh. No output may overwrite one.
+  // Files this run reads: the session (first) and every loaded mesh. No output may
+  // overwrite one.
   std::vector<std::filesystem::path> inputs;
 
   // Output bookkeeping and the report (replay_scene_ops.cpp). `output` throws

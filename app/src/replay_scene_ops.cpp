@@ -1,7 +1,5 @@
 // Execution of the scene ops (generate, load, snapshot, export, report) and the report.
 #include "replay_run.hpp"
-
-#include <algorithm>
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
@@ -16,9 +14,7 @@ namespace fs = std::filesystem;
 
 fs::path Run::output(const fs::path& relative) {
   fs::path p = resolve_output_path(options.out_dir, relative);
-  std::error_code ec;
-  if (!session.file.empty() && std::find(inputs.begin(), inputs.end(), session.file) == inputs.end())
-    inputs.push_back(session.file);
+  std::error_code ec;  // equivalent() is false, with ec set, when either file does not exist
   for (const fs::path& in : inputs)
     if (fs::equivalent(p, in, ec))
       throw std::invalid_argument("'" + relative.string() + "': is " +

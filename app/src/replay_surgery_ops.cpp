@@ -56,7 +56,6 @@ json remesh_object(SceneObject& obj, engine::RemeshParams p, engine::EditMaps* m
           {"after", mesh_quality_json(r.after)}};
 }
 
-// Constraints of a seam resampling: the object's held vertices and feature lines.
 // Faces whose current shape is far from their rest shape: an edge stretched or shortened by a
 // factor of more than 2 (a patch laid compressed into a closed slit). A seam remesh leaves them
 // as they are (engine::ResampleChainsParams::frozen_faces).
@@ -76,6 +75,8 @@ std::vector<bool> distorted_faces(const SceneObject& obj) {
   return out;
 }
 
+// Constraints of a seam resampling: the object's held vertices, feature lines and distorted
+// faces.
 engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length) {
   engine::ResampleChainsParams p;
   p.target_edge_length = target_edge_length;

@@ -25,7 +25,7 @@ struct SessionRunner::Impl {
   Impl(Session h, ReplayOptions o)
       : header(std::move(h)), options(std::move(o)),
         run{header, options, {}, {}, json::array(), json::array(),
-            json::object(), json::array(), json::object(), {}, {}, {}} {}
+            json::object(), json::array(), json::object(), {}, {}, {header.file}} {}
   [[nodiscard]] double elapsed() const {
     return std::chrono::duration<double>(clock_type::now() - start).count();
   }

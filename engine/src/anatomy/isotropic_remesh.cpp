@@ -7,8 +7,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <vector>
+
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::engine::anatomy {
 namespace {
@@ -53,24 +54,18 @@ TriangleMesh isotropic_remesh(const TriangleMesh& input, double target_edge_leng
       if (mesh.is_border(v)) mesh.point(v) = to_point(project_border(to_vec(mesh.point(v))));
   }
   mesh.collect_garbage();
-  // The last border projection can leave a rim vertex with an inner neighbour close by (fine
-  // arch: a 0.2 mm edge, an 18.8 degree face at the root). Every face below kRepairBelow
-  // degrees and the faces around its corners are smoothed by angle (CGAL's angle smoothing,
-  // Delaunay flips included), the rim held, inner vertices projected back onto the vessel;
-  // a mesh without such a face is left bit for bit as it is.
+  // The last border projection can leave a rim vertex with an inner neighbour close by (a
+  // short edge and a thin face at an open end). Every face below kRepairBelow degrees and the
+  // faces around its corners are smoothed by angle (CGAL's angle smoothing, Delaunay flips
+  // included), the rim held, inner vertices projected back onto the vessel; a mesh without
+  // such a face is left bit for bit as it is.
   constexpr double kRepairBelow = 22.0;
   std::vector<Mesh::Face_index> poor;
   for (Mesh::Face_index f : mesh.faces()) {
-    std::array<Point, 3> p;
+    std::array<Vec3, 3> p;
     int k = 0;
-    for (Mesh::Vertex_index v : vertices_around_face(mesh.halfedge(f), mesh)) p[k++] = mesh.point(v);
-    double smallest = 180.0;
-    for (int c = 0; c < 3; ++c) {
-      const Kernel::Vector_3 u = p[(c + 1) % 3] - p[c], w = p[(c + 2) % 3] - p[c];
-      const double cosine = u * w / std::sqrt(u.squared_length() * w.squared_length());
-      smallest = std::min(smallest, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
-    }
-    if (smallest < kRepairBelow) poor.push_back(f);
+    for (Mesh::Vertex_index v : vertices_around_face(mesh.halfedge(f), mesh)) p[k++] = to_vec(mesh.point(v));
+    if (smallest_angle_deg(p[0], p[1], p[2]) < kRepairBelow) poor.push_back(f);
   }
   if (!poor.empty()) {
     auto held = mesh.add_property_map<Mesh::Vertex_index, bool>("v:held", false).first;

@@ -56,14 +56,12 @@ MeshQuality triangle_quality(std::size_t n, Corners&& corners) {
   for (std::size_t i = 0; i < n; ++i) {
     Vec3 p[3];
     corners(i, p);
-    double m = 180.0;
     for (int k = 0; k < 3; ++k) {
-      const Vec3 a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
-      m = std::min(m, angle_deg(a, b));
-      q.min_edge = std::min(q.min_edge, a.norm());
-      q.max_edge = std::max(q.max_edge, a.norm());
+      const double edge = (p[(k + 1) % 3] - p[k]).norm();
+      q.min_edge = std::min(q.min_edge, edge);
+      q.max_edge = std::max(q.max_edge, edge);
     }
-    smallest.push_back(m);
+    smallest.push_back(smallest_angle_deg(p[0], p[1], p[2]));
   }
   std::sort(smallest.begin(), smallest.end());
   q.min_angle_deg = smallest.front();
@@ -72,6 +70,10 @@ MeshQuality triangle_quality(std::size_t n, Corners&& corners) {
 }
 
 }  // namespace
+
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return std::min({angle_deg(b - a, c - a), angle_deg(c - b, a - b), angle_deg(a - c, b - c)});
+}
 
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
   const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;

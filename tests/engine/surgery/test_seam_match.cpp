@@ -49,6 +49,18 @@ struct Strips {
                   chain(mesh, {10 + kGap, 2, 0}, {10 + kGap, -2, 0})};
 };
 
+// Matches the strips' seam with `params`: chain b keeps `kept` (a vertex of the input) as one
+// of its common points, both chains get one count, and the join inserts nothing.
+void expect_breakpoint_kept(const Strips& s, const ResampleChainsParams& params, VertexId kept) {
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
+  bool found = false;
+  for (const VertexId v : m.pairs[0].b.vertices) found = found || m.edit.mesh.position(v) == s.mesh.position(kept);
+  EXPECT_TRUE(found);
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
+  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
+  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+}
+
 TEST(SeamMatch, ChainsOfDifferentSpacingsGetOneCountAndTheJoinInsertsNothing) {
   const Strips s;
   ASSERT_EQ(s.pair.a.vertices.size(), 5u);
@@ -119,13 +131,7 @@ TEST(SeamMatch, AHeldChainVertexIsKeptAsABreakpointAndPairedAtItsFraction) {
   held[kept.index()] = true;
   ResampleChainsParams params;
   params.constrained_vertices = held;
-  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
-  bool found = false;
-  for (const VertexId v : m.pairs[0].b.vertices) found = found || m.edit.mesh.position(v) == s.mesh.position(kept);
-  EXPECT_TRUE(found);
-  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
-  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
-  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+  expect_breakpoint_kept(s, params, kept);
 }
 
 TEST(SeamMatch, TheEndOfAConstrainedPolylineOnAChainIsABreakpoint) {
@@ -139,13 +145,7 @@ TEST(SeamMatch, TheEndOfAConstrainedPolylineOnAChainIsABreakpoint) {
   ASSERT_TRUE(inner.valid());
   ResampleChainsParams params;
   params.constrained_edges = {{end, inner}};
-  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
-  bool found = false;
-  for (const VertexId v : m.pairs[0].b.vertices) found = found || m.edit.mesh.position(v) == s.mesh.position(end);
-  EXPECT_TRUE(found);
-  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
-  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
-  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+  expect_breakpoint_kept(s, params, end);
 }
 
 TEST(SeamMatch, FrozenFacesAreLeftAsTheyAreAndTheirChainEdgesWhole) {

@@ -27,6 +27,9 @@ struct MeshQuality {
   std::size_t faces = 0;
 };
 
+/// Smallest interior angle of the triangle (a, b, c), degrees (0 for a degenerate one). O(1).
+double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// Quality of `faces` of `mesh` (all faces when empty). Cost O(F log F).
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
 
