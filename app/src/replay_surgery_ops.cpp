@@ -1,8 +1,11 @@
 // Execution of the surgery ops (incise, join, patch, resect, measure) and of undo/redo.
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
+
+#include <Eigen/Dense>
 
 #include "replay_run.hpp"
 #include "sutura/app/report.hpp"
@@ -56,33 +59,50 @@ json remesh_object(SceneObject& obj, engine::RemeshParams p, engine::EditMaps* m
           {"after", mesh_quality_json(r.after)}};
 }
 
-// Faces whose current shape is far from their rest shape: an edge stretched or shortened by a
-// factor of more than 2 (a patch laid compressed into a closed slit). A seam remesh leaves them
-// as they are (engine::ResampleChainsParams::frozen_faces).
+// Faces whose current shape is far from their rest shape: stretched or shortened by a factor
+// of more than 2 in some direction, or sheared (principal stretches differing by more than
+// kShear: a 30-degree triangle made in that shape can be 21 degrees at rest). A patch
+// laid compressed into a closed slit is both. A seam remesh leaves them as they are
+// (engine::ResampleChainsParams::frozen_faces). The principal stretches squared are the
+// eigenvalues of G0^-1 G, G0 and G the Gram matrices of two edges at rest and now.
 std::vector<bool> distorted_faces(const SceneObject& obj) {
-  constexpr double kFactor = 2.0;
+  constexpr double kFactor = 2.0, kShear = 1.5;
   std::vector<bool> out(obj.mesh.num_faces(), false);
   const auto& faces = obj.mesh.faces();
+  const auto& x = obj.mesh.positions();
   for (std::size_t f = 0; f < faces.size() && f < obj.sim.rest.elements.size(); ++f) {
     const auto& X = obj.sim.rest.elements[f].X;
-    for (int k = 0; k < 3 && !out[f]; ++k) {
-      const double now = (obj.mesh.positions()[std::size_t(faces[f][k])] -
-                          obj.mesh.positions()[std::size_t(faces[f][(k + 1) % 3])]).norm();
-      const double rest = (X[k] - X[(k + 1) % 3]).norm();
-      out[f] = !(now <= kFactor * rest && rest <= kFactor * now);
-    }
+    const engine::Vec3 a0 = X[1] - X[0], b0 = X[2] - X[0];
+    const engine::Vec3 a = x[std::size_t(faces[f][1])] - x[std::size_t(faces[f][0])];
+    const engine::Vec3 b = x[std::size_t(faces[f][2])] - x[std::size_t(faces[f][0])];
+    Eigen::Matrix2d G0, G;
+    G0 << a0.dot(a0), a0.dot(b0), a0.dot(b0), b0.dot(b0);
+    G << a.dot(a), a.dot(b), a.dot(b), b.dot(b);
+    const double det0 = G0.determinant();
+    if (!(det0 > 0.0)) { out[f] = true; continue; }
+    const Eigen::Matrix2d C = G0.inverse() * G;  // similar to a symmetric matrix: real eigenvalues
+    const double tr = C.trace(), det = C.determinant();
+    const double disc = std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+    const double hi = 0.5 * tr + disc, lo = 0.5 * tr - disc;  // principal stretches squared
+    out[f] = !(lo > 0.0) || hi > kFactor * kFactor || lo < 1.0 / (kFactor * kFactor) || hi > kShear * kShear * lo;
   }
   return out;
 }
 
 // Constraints of a seam resampling: the object's held vertices, feature lines and distorted
-// faces.
+// faces, and the rest lengths by which a distorted face's seam edges are spaced.
 engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length) {
   engine::ResampleChainsParams p;
   p.target_edge_length = target_edge_length;
   p.constrained_vertices = kept_vertices(obj);
   p.constrained_edges = feature_edges(obj);
   p.frozen_faces = distorted_faces(obj);
+  const auto& elements = obj.sim.rest.elements;
+  if (elements.size() == obj.mesh.num_faces()) {
+    p.rest_edge_lengths.reserve(elements.size());
+    for (const auto& e : elements)
+      p.rest_edge_lengths.push_back({(e.X[0] - e.X[1]).norm(), (e.X[1] - e.X[2]).norm(), (e.X[2] - e.X[0]).norm()});
+  }
   return p;
 }
 
@@ -221,6 +241,7 @@ json Run::execute(const JoinOp& op) {
   json seams;
   if (op.remesh) seams = match_object_seams(obj, pairs);
   engine::JoinParams params;
+  if (op.remesh) params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
   params.placement = op.placement;
   if (op.placement == engine::SuturePlacement::OntoB) {
     params.held.assign(obj.mesh.num_vertices(), false);
@@ -379,8 +400,12 @@ json Run::execute(const ResectOp& op) {
     u.normalize();
     std::vector<engine::SuturePair> pairs = {{start_towards(obj.mesh, cut_loops[0], ca, u),
                                               start_towards(obj.mesh, cut_loops[1], cb, u)}};
-    if (op.remesh) j["seam_remesh"] = match_object_seams(obj, pairs);
-    const engine::JoinResult r = engine::join(obj.mesh, pairs);
+    engine::JoinParams params;
+    if (op.remesh) {
+      j["seam_remesh"] = match_object_seams(obj, pairs);
+      params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
+    }
+    const engine::JoinResult r = engine::join(obj.mesh, pairs, params);
     engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
     engine::start_relaxation(obj.mesh, obj.sim, r.merged, {});
     for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);

@@ -24,12 +24,19 @@ std::string position_hash(const engine::SurfaceMesh& mesh) {
   return buf;
 }
 
-nlohmann::json mesh_quality_json(const engine::MeshQuality& q) {
-  return {{"faces", q.faces},
-          {"min_angle_deg", q.min_angle_deg},
-          {"p5_angle_deg", q.p5_angle_deg},
-          {"min_edge_mm", q.min_edge},
-          {"max_edge_mm", q.max_edge}};
+nlohmann::json mesh_quality_json(const engine::MeshQuality& q, const engine::SurfaceMesh* mesh) {
+  nlohmann::json j = {{"faces", q.faces},
+                      {"min_angle_deg", q.min_angle_deg},
+                      {"p5_angle_deg", q.p5_angle_deg},
+                      {"min_edge_mm", q.min_edge},
+                      {"max_edge_mm", q.max_edge}};
+  if (mesh && q.worst_face.valid() && q.worst_face.index() < mesh->num_faces()) {
+    const auto v = mesh->face_vertices(q.worst_face);
+    const engine::Vec3 c = (mesh->position(v[0]) + mesh->position(v[1]) + mesh->position(v[2])) / 3.0;
+    j["worst_face"] = q.worst_face.index();
+    j["worst_face_centroid"] = {c.x(), c.y(), c.z()};
+  }
+  return j;
 }
 
 nlohmann::json hausdorff_json(const engine::HausdorffDistance& h) {
@@ -53,8 +60,8 @@ nlohmann::json object_summary(const SceneObject& object) {
       {"bounds_min", {box.min().x(), box.min().y(), box.min().z()}},
       {"bounds_max", {box.max().x(), box.max().y(), box.max().z()}},
       {"position_hash", position_hash(m)},
-      {"quality", mesh_quality_json(engine::mesh_quality(m))},
-      {"rest_quality", mesh_quality_json(engine::rest_quality(object.sim.rest))},
+      {"quality", mesh_quality_json(engine::mesh_quality(m), &m)},
+      {"rest_quality", mesh_quality_json(engine::rest_quality(object.sim.rest), &m)},
   };
 }
 

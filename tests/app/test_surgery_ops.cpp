@@ -365,6 +365,28 @@ TEST(SurgeryOps, AVersion3AnastomosisLeavesNoSliver) {
   EXPECT_LT(v2.report["objects"]["t"]["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
 }
 
+// The bundled widening gusset is sutured into the anastomosis while it is still laid out
+// compressed: its distorted faces are frozen, the seam is spaced by their rest length and
+// paired in order, so nothing is inserted and every element keeps 20 degrees (before
+// 2026-12-04: 0.8, then 12.6 degrees at rest). The report names the worst face.
+TEST(SurgeryOps, AWideningGussetSuturedBeforeRelaxingLeavesNoSliver) {
+  const fs::path session = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "resection_widening.jsonl";
+  std::ifstream in(session);
+  std::stringstream text;
+  text << in.rdbuf();
+  ReplayOptions o;
+  o.out_dir = scratch("widening") / "out";
+  const ReplayResult r = replay(parse_session(text.str(), session), o);
+  const nlohmann::json join = action(r, "join");
+  EXPECT_EQ(join["sutures"][0]["inserted_a"].get<int>() + join["sutures"][0]["inserted_b"].get<int>(), 0);
+  const nlohmann::json& aorta = r.report["objects"]["aorta"];
+  EXPECT_GE(aorta["rest_quality"]["min_angle_deg"].get<double>(), 20.0);
+  EXPECT_GE(aorta["quality"]["min_angle_deg"].get<double>(), 20.0);
+  ASSERT_TRUE(aorta["quality"].contains("worst_face"));
+  EXPECT_LT(aorta["quality"]["worst_face"].get<std::size_t>(), aorta["faces"].get<std::size_t>());
+  EXPECT_EQ(aorta["quality"]["worst_face_centroid"].size(), 3u);
+}
+
 }  // namespace
 
 namespace {

@@ -56,8 +56,8 @@ TriangleMesh isotropic_remesh(const TriangleMesh& input, double target_edge_leng
   mesh.collect_garbage();
   // The last border projection can leave a rim vertex with an inner neighbour close by (a
   // short edge and a thin face at an open end). Every face below kRepairBelow degrees and the
-  // faces around its corners are smoothed by angle (CGAL's angle smoothing, Delaunay flips
-  // included), the rim held, inner vertices projected back onto the vessel; a mesh without
+  // faces around its corners are smoothed by angle (CGAL's angle smoothing: vertices move,
+  // nothing is flipped), the rim held, inner vertices projected back onto the vessel; a mesh without
   // such a face is left bit for bit as it is.
   constexpr double kRepairBelow = 22.0;
   std::vector<Mesh::Face_index> poor;

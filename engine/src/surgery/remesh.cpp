@@ -44,7 +44,8 @@ Eigen::Vector3d plane_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, c
 
 namespace {
 
-// Quality of triangles given by `corners(i, p)` (fills p[3] for triangle i), i < n.
+// Quality of triangles given by `corners(i, p)` (fills p[3] for triangle i), i < n; the
+// worst face is FaceId(i) of the smallest angle (the first of equals).
 template <class Corners>
 MeshQuality triangle_quality(std::size_t n, Corners&& corners) {
   MeshQuality q;
@@ -62,6 +63,7 @@ MeshQuality triangle_quality(std::size_t n, Corners&& corners) {
       q.max_edge = std::max(q.max_edge, edge);
     }
     smallest.push_back(smallest_angle_deg(p[0], p[1], p[2]));
+    if (i == 0 || smallest.back() < smallest[q.worst_face.index()]) q.worst_face = FaceId(i);
   }
   std::sort(smallest.begin(), smallest.end());
   q.min_angle_deg = smallest.front();
@@ -77,10 +79,12 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
   const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
-  return triangle_quality(set.size(), [&](std::size_t i, Vec3* p) {
+  MeshQuality q = triangle_quality(set.size(), [&](std::size_t i, Vec3* p) {
     const auto v = mesh.face_vertices(set[i]);
     for (int k = 0; k < 3; ++k) p[k] = mesh.position(v[k]);
   });
+  if (q.worst_face.valid()) q.worst_face = set[q.worst_face.index()];
+  return q;
 }
 
 MeshQuality rest_quality(const RestState& rest) {

@@ -195,54 +195,84 @@ double seam_spacing(const SurfaceMesh& mesh, const SuturePair& pair, double min_
   return std::max(p.target_edge_length, min_spacing);
 }
 
-int seam_segments(const SurfaceMesh& mesh, const SuturePair& pair, double spacing) {
-  const double mean = 0.5 * (chain_length(mesh, pair.a) + chain_length(mesh, pair.b));
-  const long n = std::lround(mean / spacing);
+int seam_segments(const SuturePair& pair, double length_a, double length_b, double spacing) {
+  const long n = std::lround(0.5 * (length_a + length_b) / spacing);
   return static_cast<int>(std::clamp<long>(n, pair.a.closed ? 3 : 1, 1000000));
 }
 
 namespace {
 
-// Fractions of the chain's length at each of its vertices (a loop: from its first vertex).
-std::vector<double> vertex_fractions(const SurfaceMesh& mesh, const BoundaryChain& c) {
+// A chain's length along it as the seams are spaced, at each vertex and at the end (a loop:
+// from its first vertex round to it again; n + 1 entries), and the same in current length.
+struct ChainMeasure {
+  std::vector<double> spaced, current;
+  double length() const { return spaced.back(); }
+  // The fraction of the spaced length at vertex i (i = n: the end).
+  double fraction(std::size_t i) const { return spaced[i] / spaced.back(); }
+  // A fraction of the spaced length as a fraction of the current length (piecewise linear
+  // between the vertices: exact at each of them).
+  double to_current(double x) const {
+    const double s = x * spaced.back();
+    const std::size_t i = std::min<std::size_t>(
+        std::upper_bound(spaced.begin(), spaced.end(), s) - spaced.begin(), spaced.size() - 1);
+    const double t = std::clamp((s - spaced[i - 1]) / (spaced[i] - spaced[i - 1]), 0.0, 1.0);
+    return (current[i - 1] + t * (current[i] - current[i - 1])) / current.back();
+  }
+};
+
+ChainMeasure chain_measure(const SurfaceMesh& mesh, const BoundaryChain& c, const std::vector<bool>& frozen,
+                           const std::vector<std::array<double, 3>>& rest) {
   const std::size_t n = c.vertices.size();
-  std::vector<double> f(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i)
-    f[i] = f[i - 1] + (mesh.position(c.vertices[i]) - mesh.position(c.vertices[i - 1])).norm();
-  const double total = chain_length(mesh, c);
-  for (double& x : f) x /= total;
-  return f;
+  const std::size_t edges = c.closed ? n : n - 1;
+  ChainMeasure m{std::vector<double>(edges + 1, 0.0), std::vector<double>(edges + 1, 0.0)};
+  for (std::size_t i = 0; i < edges; ++i) {
+    const VertexId u = c.vertices[i], w = c.vertices[(i + 1) % n];
+    const double now = (mesh.position(w) - mesh.position(u)).norm();
+    double spaced = now;
+    const HalfedgeId h = rest.empty() ? HalfedgeId() : detail::find_halfedge(mesh, u, w);
+    if (h.valid() && frozen[SurfaceMesh::face(h).index()]) {
+      const FaceId f = SurfaceMesh::face(h);
+      const auto& corners = mesh.faces()[f.index()];
+      for (int k = 0; k < 3; ++k)
+        if (corners[std::size_t(k)] == u.value) spaced = rest[f.index()][std::size_t(k)];
+    }
+    if (!(spaced > 0.0) || !std::isfinite(spaced)) spaced = now;
+    m.spaced[i + 1] = m.spaced[i] + spaced;
+    m.current[i + 1] = m.current[i] + now;
+  }
+  return m;
 }
 
-// The inner fractions (along chain a) of one pair's common points: `segments` pieces, the
-// held inner vertices of both chains as breakpoints (b's at 1 - its own fraction: it runs the
-// other way), each stretch between breakpoints cut into pieces in proportion to its length.
-// A chain edge of a frozen face is a stretch of its own, one piece: both its ends are
-// breakpoints that are never merged with a neighbour.
-std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& pair, int segments,
+// The inner fractions (along chain a, of its measure) of one pair's common points: `segments`
+// pieces, the held inner vertices of both chains as breakpoints (b's at 1 - its own fraction:
+// it runs the other way), each stretch between breakpoints cut into pieces in proportion to
+// its length. A chain edge of a frozen face is a stretch of its own: both its ends are
+// breakpoints that are never merged with a neighbour. It is one piece unless it measures (at
+// rest, when given) more than 4/3 of the spacing; then it is split evenly, and its frozen
+// face with it (a split is exact at rest).
+std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& pair,
+                                     const ChainMeasure (&measure)[2], int segments,
                                      const std::vector<bool>& held, const std::vector<bool>& frozen) {
   struct Break {
     double at;
     bool strong;  // the end of a frozen edge: kept whatever its neighbours
   };
   std::vector<Break> breaks{{0.0, true}, {1.0, true}};
-  std::vector<std::pair<double, double>> whole;  // frozen stretches, in a's fractions
   for (const bool on_b : {false, true}) {
     const BoundaryChain& c = on_b ? pair.b : pair.a;
-    const std::vector<double> f = vertex_fractions(mesh, c);
+    const ChainMeasure& f = measure[on_b ? 1 : 0];
     const auto along_a = [&](double x) { return on_b ? 1.0 - x : x; };
     const std::size_t n = c.vertices.size();
     for (std::size_t i = 1; i < n; ++i)
       if (!held.empty() && held[c.vertices[i].index()] && (c.closed || i + 1 < n))
-        breaks.push_back({along_a(f[i]), false});
+        breaks.push_back({along_a(f.fraction(i)), false});
     if (frozen.empty()) continue;
     for (std::size_t i = 0; i + (c.closed ? 0 : 1) < n; ++i) {
       const HalfedgeId h = detail::find_halfedge(mesh, c.vertices[i], c.vertices[(i + 1) % n]);
       if (!h.valid() || !frozen[SurfaceMesh::face(h).index()]) continue;
-      const double u = along_a(f[i]), w = along_a(i + 1 < n ? f[i + 1] : 1.0);
+      const double u = along_a(f.fraction(i)), w = along_a(f.fraction(i + 1));
       breaks.push_back({u, true});
       breaks.push_back({w, true});
-      whole.emplace_back(std::min(u, w), std::max(u, w));
     }
   }
   std::sort(breaks.begin(), breaks.end(), [](const Break& x, const Break& y) {
@@ -266,10 +296,10 @@ std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& 
   std::vector<double> at;
   for (std::size_t i = 0; i + 1 < kept.size(); ++i) {
     const double span = kept[i + 1].at - kept[i].at;
-    const double mid = kept[i].at + 0.5 * span;
-    const bool one = std::any_of(whole.begin(), whole.end(),
-                                 [&](const auto& w) { return w.first <= mid && mid <= w.second; });
-    const long pieces = one ? 1L : std::max(1L, std::lround(span * segments));
+    // As many pieces as the stretch holds, none longer than 4/3 of the spacing: the remesh
+    // splits a longer edge (CGAL's isotropic split threshold), on one chain only.
+    const double spacings = span * segments;
+    const long pieces = std::max({1L, std::lround(spacings), static_cast<long>(std::ceil(0.75 * spacings - 1e-9))});
     if (i > 0) at.push_back(kept[i].at);
     for (long k = 1; k < pieces; ++k) at.push_back(kept[i].at + span * double(k) / double(pieces));
   }
@@ -296,15 +326,22 @@ MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>&
   }
   std::vector<ChainResample> chains;
   double finest = HUGE_VAL;
+  if (!params.rest_edge_lengths.empty() &&
+      (params.rest_edge_lengths.size() != mesh.num_faces() || params.frozen_faces.size() != mesh.num_faces()))
+    throw InvalidArgument("match_seams: rest_edge_lengths needs one entry per face, and frozen_faces");
   for (const SuturePair& p : pairs) {
     const double h = seam_spacing(mesh, p);
-    const std::vector<double> at =
-        common_fractions(mesh, p, seam_segments(mesh, p, h), held, params.frozen_faces);
-    std::vector<double> at_b;  // the same points along b, which runs the other way
-    for (auto it = at.rbegin(); it != at.rend(); ++it) at_b.push_back(1.0 - *it);
+    const ChainMeasure measure[2] = {chain_measure(mesh, p.a, params.frozen_faces, params.rest_edge_lengths),
+                                     chain_measure(mesh, p.b, params.frozen_faces, params.rest_edge_lengths)};
+    const int segments = seam_segments(p, measure[0].length(), measure[1].length(), h);
+    const std::vector<double> at = common_fractions(mesh, p, measure, segments, held, params.frozen_faces);
+    // The same points along each chain in current length (b runs the other way).
+    std::vector<double> at_a, at_b;
+    for (const double x : at) at_a.push_back(measure[0].to_current(x));
+    for (auto it = at.rbegin(); it != at.rend(); ++it) at_b.push_back(measure[1].to_current(1.0 - *it));
     m.spacing.push_back(h);
     finest = std::min(finest, h);
-    chains.push_back({p.a, at});
+    chains.push_back({p.a, at_a});
     chains.push_back({p.b, at_b});
   }
   params.target_edge_length = finest;

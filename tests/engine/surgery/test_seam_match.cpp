@@ -1,6 +1,7 @@
 #include "sutura/engine/surgery/seam_match.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -188,6 +189,54 @@ TEST(SeamMatch, FrozenFacesAreLeftAsTheyAreAndTheirChainEdgesWhole) {
   ASSERT_EQ(m.pairs[0].a.vertices.size(), b.size());
   EXPECT_EQ(join(m.edit.mesh, m.pairs).sutures[0].inserted_a, 0);
   params.frozen_faces.assign(3, false);
+  EXPECT_THROW(match_seams(s.mesh, {s.pair}, params), InvalidArgument);
+}
+
+TEST(SeamMatch, AFrozenChainEdgeIsSpacedByItsRestLength) {
+  // Chain b's edge (u, w), 4/7 mm now, is 12/7 mm at rest (a patch laid compressed): b then
+  // measures 4 + 8/7 = 36/7 mm, u lies at 2/9 of it and w at 5/9, and their partners on a
+  // (which runs the other way) at 7/9 and 4/9 of a's 4 mm, not at u's and w's positions. At
+  // rest the edge is longer than 4/3 of the seam spacing, so it is split at its middle, whose
+  // partner lies at 5.5/9.
+  const Strips s;
+  const VertexId u = s.pair.b.vertices[2], w = s.pair.b.vertices[3];
+  ResampleChainsParams params;
+  params.frozen_faces.assign(s.mesh.num_faces(), false);
+  for (std::size_t f = 0; f < s.mesh.num_faces(); ++f) {
+    const FaceIndices& t = s.mesh.faces()[f];
+    std::array<double, 3> rest{};
+    for (int k = 0; k < 3; ++k) {
+      const VertexId from(t[k]), to(t[(k + 1) % 3]);
+      rest[std::size_t(k)] = (s.mesh.position(to) - s.mesh.position(from)).norm();
+      if (from == u && to == w) rest[std::size_t(k)] *= 3.0, params.frozen_faces[f] = true;
+    }
+    params.rest_edge_lengths.push_back(rest);
+  }
+  ASSERT_EQ(std::count(params.frozen_faces.begin(), params.frozen_faces.end(), true), 1);
+  const MatchedSeams m = match_seams(s.mesh, {s.pair}, params);
+  ASSERT_TRUE(m.edit.mesh.validate().ok());
+  const auto& a = m.pairs[0].a.vertices;
+  const auto& b = m.pairs[0].b.vertices;
+  ASSERT_EQ(a.size(), b.size());
+  const std::size_t n = b.size() - 1;
+  std::size_t iu = b.size(), iw = b.size();
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (m.edit.mesh.position(b[k]) == s.mesh.position(u)) iu = k;
+    if (m.edit.mesh.position(b[k]) == s.mesh.position(w)) iw = k;
+  }
+  ASSERT_LT(iu, b.size());
+  ASSERT_EQ(iw, iu + 2);
+  EXPECT_NEAR((m.edit.mesh.position(b[iu + 1]) - 0.5 * (s.mesh.position(u) + s.mesh.position(w))).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(m.edit.mesh.position(a[n - iu]).y(), -2.0 + 4.0 * 7.0 / 9.0, 1e-12);
+  EXPECT_NEAR(m.edit.mesh.position(a[n - iu - 1]).y(), -2.0 + 4.0 * 5.5 / 9.0, 1e-12);
+  EXPECT_NEAR(m.edit.mesh.position(a[n - iw]).y(), -2.0 + 4.0 * 4.0 / 9.0, 1e-12);
+  // Paired in order, nothing is inserted; by arc length, the spacings no longer agree.
+  JoinParams in_order;
+  in_order.pairing = JoinPairing::InOrder;
+  const SutureReport r = join(m.edit.mesh, m.pairs, in_order).sutures[0];
+  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+  // One entry per face, or none.
+  params.rest_edge_lengths.pop_back();
   EXPECT_THROW(match_seams(s.mesh, {s.pair}, params), InvalidArgument);
 }
 

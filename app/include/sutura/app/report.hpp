@@ -20,8 +20,9 @@ std::string position_hash(const engine::SurfaceMesh& mesh);
 nlohmann::json object_summary(const SceneObject& object);
 
 /// Face count, smallest angle, 5th-percentile smallest angle (degrees) and edge-length range
-/// (mm) of a set of faces (engine::mesh_quality).
-nlohmann::json mesh_quality_json(const engine::MeshQuality& q);
+/// (mm) of a set of faces (engine::mesh_quality); with `mesh`, also the worst face's index
+/// and the centroid of its current shape (mm), to find it.
+nlohmann::json mesh_quality_json(const engine::MeshQuality& q, const engine::SurfaceMesh* mesh = nullptr);
 
 /// The one-sided, symmetric and mean distances (mm) and sample counts.
 nlohmann::json hausdorff_json(const engine::HausdorffDistance& h);

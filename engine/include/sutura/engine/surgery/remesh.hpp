@@ -25,6 +25,7 @@ struct MeshQuality {
   double min_edge = 0.0;       ///< mm
   double max_edge = 0.0;       ///< mm
   std::size_t faces = 0;
+  FaceId worst_face;           ///< the face with the smallest angle (invalid when no face)
 };
 
 /// Smallest interior angle of the triangle (a, b, c), degrees (0 for a degenerate one). O(1).

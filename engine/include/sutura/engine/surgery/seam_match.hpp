@@ -7,6 +7,7 @@
 // (docs/remeshing.md: down to 1 degree after a resection anastomosis). Each side is remeshed
 // in its own configuration before the join, where it is whole and (for a fresh patch) in its
 // rest shape, not in the joined shape, which is far from any rest shape across a wide gap.
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -44,8 +45,16 @@ struct ResampleChainsParams {
   /// Per face (empty or mesh-sized): faces left exactly as they are. For faces whose current
   /// shape is far from their rest shape (a patch laid compressed into a closed slit): triangles
   /// made in that shape would be distorted at rest (carry.hpp). Their vertices are held, and
-  /// match_seams makes their chain vertices breakpoints with no point between them.
+  /// match_seams makes their chain vertices breakpoints, with no point between them unless
+  /// the edge measures more than 4/3 of the seam spacing (it is then split evenly, its face
+  /// into as many parts).
   std::vector<bool> frozen_faces;
+  /// Per face (empty or mesh-sized): the rest length of edge k (corners k, k + 1), mm. A
+  /// frozen face's chain edge then counts at its rest length when match_seams spaces the
+  /// common points, so the chain opposite a compressed patch is divided as the patch will be
+  /// once it has relaxed, not as it lies (a gusset base laid at a third of its length left
+  /// 0.14 mm edges on the rim sutured to it). Other edges count at their current length.
+  std::vector<std::array<double, 3>> rest_edge_lengths;
 };
 
 struct ResampleChainsResult {
@@ -70,16 +79,17 @@ ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<
 /// chains (band_around's), never below `min_spacing`. Cost O(F).
 double seam_spacing(const SurfaceMesh& mesh, const SuturePair& pair, double min_spacing = 0.0);
 
-/// Segments for a pair sutured at `spacing`: the mean length of its chains over the spacing,
-/// rounded, at least 1 (3 for loops).
-int seam_segments(const SurfaceMesh& mesh, const SuturePair& pair, double spacing);
+/// Segments for a pair sutured at `spacing`: the mean of its chains' lengths (`length_a`,
+/// `length_b`, mm) over the spacing, rounded, at least 1 (3 for loops).
+int seam_segments(const SuturePair& pair, double length_a, double length_b, double spacing);
 
-/// Resamples every pair's two chains at one set of fractions (seam_segments pieces at its
+/// Resamples every pair's two chains to the same number of points at one set of fractions of
+/// their lengths, each edge counted at its current length or, for a frozen face's edge with
+/// params.rest_edge_lengths given, at its rest length (seam_segments pieces at its
 /// seam_spacing; held vertices of either chain, ends of constrained edges meeting it and
-/// vertices of frozen faces kept as breakpoints at their own fraction, a frozen chain edge
-/// left whole) and
-/// remeshes around them, so that join(result.mesh, result.pairs) inserts no vertex. Same
-/// contract and cost as resample_chains.
+/// vertices of frozen faces kept as breakpoints at their own fraction; no piece longer than
+/// 4/3 of the spacing), and remeshes around them, so that join(result.mesh, result.pairs) with
+/// JoinPairing::InOrder inserts no vertex. Same contract and cost as resample_chains.
 struct MatchedSeams {
   ResampleChainsResult edit;
   std::vector<SuturePair> pairs;
