@@ -36,6 +36,11 @@ SceneObject& Run::object(const std::string& name) {
 json Run::report(const std::string& status, const std::string& error, double total) const {
   json objects = json::object();
   for (const auto& o : workspace.objects()) objects[o.name] = object_summary(o);
+  // Every op's warning, in order, so that none is missed among the actions.
+  json warnings = json::array();
+  for (const json& a : actions)
+    if (a.contains("warning"))
+      warnings.push_back({{"line", a.value("line", 0)}, {"op", a.value("op", "")}, {"warning", a["warning"]}});
   const engine::ComputeThreads threads = engine::compute_threads();
   json r = {{"sutura_version", SUTURA_VERSION},
             {"blas", engine::blas_kernels_in_use()},
@@ -49,6 +54,7 @@ json Run::report(const std::string& status, const std::string& error, double tot
             {"probes", probes},
             {"checks", checks},
             {"measurements", measurements},
+            {"warnings", warnings},
             {"total_seconds", total}};
   if (!error.empty()) r["error"] = error;
   return r;

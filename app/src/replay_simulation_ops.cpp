@@ -6,6 +6,7 @@
 
 #include "replay_run.hpp"
 #include "sutura/app/simulation.hpp"
+#include "sutura/engine/sim/rigid_modes.hpp"
 #include "sutura/engine/sim/selection.hpp"
 #include "sutura/engine/sim/stability.hpp"
 
@@ -71,6 +72,25 @@ std::string stability_warning(const engine::Stability& st, const std::string& wh
            "); a small disturbance may change it, so read its measurements with care";
   return "the " + what + " is not a stable equilibrium (" + st.summary +
          "); the vessel would not keep this shape, so its measurements are not a prediction";
+}
+
+// A static equilibrium needs every rigid-body motion of every object restrained: along a free
+// one the tangent is singular and the "solution" is whatever round-off picks (an open tube
+// under pressure with nothing fixed was reported solved). Throws naming the object and its
+// free motions; `what` is the run ("solve"). Contact could hold a body: not checked then.
+void require_restrained(const std::vector<SceneObject*>& objs, const std::string& what) {
+  for (const SceneObject* o : objs) {
+    const auto free = engine::free_rigid_motions(o->sim.state.x, o->sim.constraints);
+    if (free.empty()) continue;
+    std::string motions;
+    for (std::size_t k = 0; k < free.size(); ++k) motions += (k ? "; " : "") + free[k].describe();
+    throw std::runtime_error(
+        "object '" + o->name + "' can move as a rigid body (" + std::to_string(free.size()) +
+        " motion" + (free.size() > 1 ? "s" : "") + " not restrained by any fixed degree of freedom: " +
+        motions + "), so a " + what +
+        " has no unique equilibrium; fix enough of it (op fix: e.g. \"boundary\": \"all\"), or "
+        "use simulate for its dynamics");
+  }
 }
 
 std::string equilibrium_warning(const engine::RelaxationResult& r) {
@@ -140,7 +160,9 @@ json Run::execute(const MaterialOp& op) {
   SceneObject& obj = object(op.object);
   obj.sim.materials = {op.material};
   obj.sim.face_material.assign(obj.mesh.num_faces(), 0);
-  return {{"object", op.object}};
+  json out = {{"object", op.object}};
+  if (const std::string w = engine::material_warning(op.material); !w.empty()) out["warning"] = w;
+  return out;
 }
 
 json Run::execute(const ConstrainOp& op) {
@@ -206,6 +228,7 @@ json Run::execute(const SolveOp& op) {
     throw std::runtime_error("load_factor " + std::to_string(op.load_factor) +
                              " is below the load factor already reached (" +
                              std::to_string(start) + ")");
+  require_restrained(objs, "static solve");
   const auto model = make_model(op.model);
   const engine::AreaBarrierParams barrier;
   MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &barrier : nullptr);
@@ -291,6 +314,7 @@ json Run::relax(const SimulateOp& op) {
     throw std::runtime_error("relax.until " + std::to_string(params.s_end) +
                              " is below the relaxation already reached (" +
                              std::to_string(s_start) + ")");
+  if (params.solver == engine::RelaxationSolver::Static && !op.contact) require_restrained(objs, "static relaxation");
   const auto model = make_model(op.model);
   const engine::AreaBarrierParams barrier;
   MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr,

@@ -346,6 +346,7 @@ json Run::execute(const PatchOp& op) {
             {"sutures", sutures}};
   if (!remeshed.is_null()) j["remesh"] = remeshed;
   j["mesh"] = mesh_counts(obj);
+  if (const std::string w = engine::material_warning(op.material); !w.empty()) j["warning"] = "patch material: " + w;
   return j;
 }
 

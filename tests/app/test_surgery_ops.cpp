@@ -416,6 +416,49 @@ TEST(SurgeryOps, AnEquilibriumThatHoldsAlreadyConvergesAtOnce) {
   EXPECT_EQ(action(relaxed, "simulate")["s_reached"].get<double>(), 1.0);
 }
 
+// Silent wrong successes (issue 27: ../shared/robustness/wrong_success_*.jsonl) are errors
+// naming the problem: a static solve of a body that nothing holds (its rigid motions named),
+// and a resection seed far from the surface.
+TEST(SurgeryOps, AnUnheldBodyAndAFarSeedAreRefused) {
+  const std::string tube =
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 30, "
+      "\"segments_around\": 16, \"segments_along\": 12}\n";
+  const std::string pressure = "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.0107}\n";
+  const std::string unheld = failure(kHeader + tube + pressure + "{\"op\": \"solve\"}\n", 4);
+  EXPECT_NE(unheld.find("object 't' can move as a rigid body (6 motions"), std::string::npos) << unheld;
+  EXPECT_NE(unheld.find("translation along (1, 0, 0)"), std::string::npos) << unheld;
+  // One end held: solved.
+  const std::string one_end = "{\"op\": \"fix\", \"object\": \"t\", \"boundary_near\": [[0, 0, 0]]}\n";
+  EXPECT_EQ(run(kHeader + tube + one_end + pressure + "{\"op\": \"solve\"}\n", "one_end").report["status"], "ok");
+  const std::string seed = failure(
+      kHeader + tube +
+          "{\"op\": \"resect\", \"object\": \"t\", \"planes\": [{\"origin\": [0, 0, 15], \"normal\": [0, 0, 1]}], "
+          "\"seed\": [400, 0, 20]}\n",
+      3);
+  EXPECT_NE(seed.find("the seed (400, 0, 20) lies 396 mm from the surface"), std::string::npos) << seed;
+}
+
+// A material at the edge of validity runs, warned about on its op and in the report's list of
+// warnings (../shared/robustness/wrong_success_poisson_0.4999999.jsonl).
+TEST(SurgeryOps, ANearlyIncompressibleMaterialIsWarnedAbout) {
+  const std::string tube =
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 30, "
+      "\"segments_around\": 16, \"segments_along\": 12}\n";
+  const auto material = [](const std::string& nu) {
+    return "{\"op\": \"material\", \"object\": \"t\", \"youngs_modulus\": 1, \"poisson_ratio\": " + nu +
+           ", \"thickness\": 0.5}\n";
+  };
+  const ReplayResult edge = run(kHeader + tube + material("0.4999999"), "nu_edge");
+  EXPECT_EQ(edge.report["status"], "ok");
+  ASSERT_EQ(edge.report["warnings"].size(), 1u);
+  EXPECT_EQ(edge.report["warnings"][0]["line"], 3);
+  EXPECT_EQ(edge.report["warnings"][0]["op"], "material");
+  EXPECT_NE(edge.report["warnings"][0]["warning"].get<std::string>().find("poisson_ratio 0.4999999"), std::string::npos);
+  EXPECT_EQ(action(edge, "material")["warning"], edge.report["warnings"][0]["warning"]);
+  const ReplayResult usual = run(kHeader + tube + material("0.45"), "nu_usual");
+  EXPECT_TRUE(usual.report["warnings"].empty());
+}
+
 // The distance op records the Hausdorff distance between two objects for `check`: two tubes
 // 0.1 mm apart in radius (closed form: test_hausdorff.cpp).
 TEST(SurgeryOps, DistanceOpRecordsTheHausdorffDistanceForCheck) {

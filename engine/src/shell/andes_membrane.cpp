@@ -76,6 +76,7 @@ Eigen::Matrix<double, 9, 9> andes_membrane_stiffness(const std::array<Eigen::Vec
   // Side-midpoint values; the midpoint rule integrates the quadratic energy density exactly.
   const Mat3 Q4 = 0.5 * (Q1 + Q2), Q5 = 0.5 * (Q2 + Q3), Q6 = 0.5 * (Q3 + Q1);
   const double nu = m.poisson_ratio;
+  // Floored at 0.01, reached at nu = kNearlyIncompressible (material.hpp warns above it).
   const double beta0 = std::max(0.5 * (1.0 - 4.0 * nu * nu), 0.01);
   Mat3 Ktheta = (0.75 * beta0 * V) *
                 (Q4.transpose() * Cn * Q4 + Q5.transpose() * Cn * Q5 + Q6.transpose() * Cn * Q6);

@@ -32,4 +32,15 @@ void validate(const ShellMaterial& m) {
     fail("drilling_factor", m.drilling_factor, "finite and > 0");
 }
 
+std::string material_warning(const ShellMaterial& m) {
+  if (!(m.poisson_ratio > kNearlyIncompressible)) return {};
+  std::ostringstream os;
+  os.precision(17);
+  os << "poisson_ratio " << m.poisson_ratio << " is above " << kNearlyIncompressible
+     << ", nearly incompressible: the membrane element's higher-order stiffness (ANDES-OPT beta0 = "
+        "(1 - 4 nu^2) / 2) is held at its floor 0.01 there, and no model thins the wall as it "
+        "stretches; the results approximate such a wall less well than at 0.45-0.49";
+  return os.str();
+}
+
 }  // namespace sutura::engine

@@ -19,6 +19,13 @@ inline HalfedgeId find_halfedge(const SurfaceMesh& mesh, VertexId u, VertexId v)
 }
 
 /// "(x, y, z)" for error messages.
+// A length for a message: 6 significant digits ("396", "0.25").
+inline std::string number_text(double x) {
+  std::ostringstream os;
+  os << x;
+  return os.str();
+}
+
 inline std::string point_text(const Vec3& x) {
   std::ostringstream os;
   os << "(" << x.x() << ", " << x.y() << ", " << x.z() << ")";

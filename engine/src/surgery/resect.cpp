@@ -88,6 +88,13 @@ ResectionResult resect(const SurfaceMesh& mesh, const std::vector<CutPlane>& pla
 
   // Flood the region from the seed face, never crossing an edge lying on a cut.
   const SurfacePoint start = closest_surface_point(current, seed);
+  // A seed far from the surface picks whatever part happens to be nearest it (400 mm away, a
+  // resection "succeeded" on a tube end): it must lie on or near the part to remove.
+  if (const double off = (start.position - seed).norm(); !(off <= params.radius))
+    throw InvalidArgument("the seed " + detail::point_text(seed) + " lies " + detail::number_text(off) +
+                          " mm from the surface (nearest point " + detail::point_text(start.position) +
+                          "); it must lie within radius " + detail::number_text(params.radius) +
+                          " mm of the part to remove");
   auto barrier = [&](HalfedgeId h) {
     const VertexId a = current.from_vertex(h), b = current.to_vertex(h);
     for (const auto& cut : on_cut)

@@ -599,5 +599,19 @@ TEST(ShellMaterial, ValidateNamesFieldAndValue) {
   EXPECT_NE(message(m).find("drilling_factor = 0"), std::string::npos) << message(m);
 }
 
+// A Poisson ratio a hair below 0.5 is valid but warned about: from kNearlyIncompressible on,
+// ANDES-OPT's beta0 = (1 - 4 nu^2) / 2 is below its floor 0.01 (issue 27).
+TEST(ShellMaterial, ANearlyIncompressibleWallIsWarnedAbout) {
+  ShellMaterial m;
+  EXPECT_EQ(material_warning(m), "");
+  m.poisson_ratio = 0.49;
+  EXPECT_EQ(material_warning(m), "");
+  EXPECT_GT(0.5 * (1.0 - 4.0 * 0.49 * 0.49), 0.01);
+  EXPECT_LT(0.5 * (1.0 - 4.0 * 0.496 * 0.496), 0.01);
+  m.poisson_ratio = 0.4999999;
+  EXPECT_NO_THROW(validate(m));
+  EXPECT_EQ(material_warning(m).rfind("poisson_ratio 0.4999999 is above 0.495", 0), 0u) << material_warning(m);
+}
+
 }  // namespace
 }  // namespace sutura::engine

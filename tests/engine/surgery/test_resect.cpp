@@ -74,6 +74,15 @@ TEST(Resect, ReportsACutThatDoesNotGoAllTheWayRound) {
     EXPECT_NE(std::string(e.what()).find("all the way round"), std::string::npos) << e.what();
   }
   EXPECT_THROW(resect(m, {}, Vec3::Zero()), InvalidArgument);
+  // A seed far off the surface (../shared/robustness/wrong_success_resect_seed_outside.jsonl)
+  // is refused, naming its distance; one inside the lumen (3 mm from the wall) is not.
+  try {
+    resect(m, {{Vec3(0, 0, 15), Vec3(0, 0, 1)}}, Vec3(400, 0, 20));
+    FAIL() << "no error";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("the seed (400, 0, 20) lies 397"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(resect(m, {{Vec3(0, 0, 15), Vec3(0, 0, 1)}}, Vec3(0, 0, 20)));
   EXPECT_THROW(resect(m, {{Vec3::Zero(), Vec3::Zero()}}, Vec3::Zero()), InvalidArgument);
 }
 

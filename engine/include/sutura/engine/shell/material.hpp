@@ -1,6 +1,8 @@
 #pragma once
 // Shell material. Unit system throughout the engine: mm, N, s, tonne
 // => stress and Young's modulus in MPa (N/mm^2), density in t/mm^3 (1060 kg/m^3 = 1.06e-9).
+#include <string>
+
 namespace sutura::engine {
 
 struct ShellMaterial {
@@ -20,5 +22,13 @@ struct ShellMaterial {
 
 /// Throws InvalidArgument naming the field and value if a parameter is out of range.
 void validate(const ShellMaterial& m);
+
+/// Above this Poisson ratio Model 1's membrane element (ANDES-OPT) would have a higher-order
+/// stiffness factor beta0 = (1 - 4 nu^2) / 2 below its floor 0.01 (andes_membrane.cpp).
+inline constexpr double kNearlyIncompressible = 0.495;
+
+/// A valid material at the edge of what the models represent, in words naming the field and
+/// why; empty when there is nothing to say. Today: poisson_ratio above kNearlyIncompressible.
+std::string material_warning(const ShellMaterial& m);
 
 }  // namespace sutura::engine

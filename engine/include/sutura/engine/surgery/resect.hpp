@@ -36,8 +36,9 @@ struct ResectionResult {
 /// that the cuts enclose: with two planes across a vessel and the seed between them, the band
 /// between the cuts (resection); with one plane across a branch and the seed beyond it, the
 /// branch end (division). Throws InvalidArgument naming the problem when a plane is degenerate,
-/// a cut does not go all the way round within `radius` (the region would leak past a plane),
-/// or nothing or everything would be removed. Cost O(F log F).
+/// the seed lies farther than `radius` from the surface, a cut does not go all the way round
+/// within `radius` (the region would leak past a plane), or nothing or everything would be
+/// removed. Cost O(F log F).
 ResectionResult resect(const SurfaceMesh& mesh, const std::vector<CutPlane>& planes,
                        const Vec3& seed, const ResectionParams& params = {});
 
