@@ -22,12 +22,11 @@
 
 namespace {
 
-int run_replay(const std::string& session_file, const std::string& out_dir, bool quiet,
-               int threads) {
+// `options` holds the output directory, threads and limits; progress is added here. Returns 0,
+// or 2 when the time limit stopped the run (report.json has status "stopped").
+int run_replay(const std::string& session_file, sutura::app::ReplayOptions options, bool quiet) {
   using namespace sutura::app;
-  ReplayOptions options;
-  options.out_dir = out_dir;
-  options.threads = threads;
+  const std::string out_dir = options.out_dir.string();
   Session session;
   try {
     session = load_session(session_file);
@@ -64,6 +63,11 @@ int run_replay(const std::string& session_file, const std::string& out_dir, bool
     std::cerr << "sutura: replaying " << session_file << " (" << session.actions.size()
               << " actions) into " << out_dir << "/\n";
   const ReplayResult result = replay(session, options);
+  if (result.stopped) {
+    std::cerr << "sutura: stopped: " << result.report["error"].get<std::string>() << "; report: " << out_dir
+              << "/report.json\n";
+    return 2;
+  }
   if (!quiet) {
     for (const auto& o : result.workspace.objects())
       std::cerr << "sutura: object '" << o.name << "': " << o.mesh.num_vertices()
@@ -125,6 +129,27 @@ int main(int argc, char** argv) {
                      "Compute threads (OpenMP and BLAS); default: one per core. 1 is faster where "
                      "other processes keep the cores busy; positions then differ in the last bits")
       ->check(CLI::Range(1, 1024));
+  sutura::app::ReplayOptions replay_options;
+  sutura::app::Limits& limits = replay_options.limits;
+  replay->add_option("--time-limit", replay_options.time_limit,
+                     "Stop cleanly after this many seconds (report.json status \"stopped\", exit code 2); "
+                     "default: none")
+      ->check(CLI::PositiveNumber);
+  replay->add_option("--max-faces", limits.faces_per_object, "Most faces of one object")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(20'000'000)));
+  replay->add_option("--max-faces-in-all", limits.faces_in_all, "Most faces of all objects together")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(100'000'000)));
+  replay->add_option("--max-objects", limits.objects, "Most objects")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(100'000)));
+  replay->add_option("--max-steps", limits.steps, "Most steps of one simulate (dynamics steps, relaxation increments and settling steps)")
+      ->capture_default_str()
+      ->check(CLI::Range(1L, 10'000'000L));
+  replay->add_option("--max-undo-mb", limits.undo_megabytes, "Most memory the undo history holds, MiB")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20));
 
   std::string mesh_file;
   double weld = 1e-6;
@@ -152,7 +177,11 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (*replay) return run_replay(session_file, out_dir, quiet, threads);
+    if (*replay) {
+      replay_options.out_dir = out_dir;
+      replay_options.threads = threads;
+      return run_replay(session_file, replay_options, quiet);
+    }
     if (*info) return run_info(mesh_file, weld);
     if (*distance) return run_distance(distance_a, distance_b, spacing);
     if (*arch) return sutura::app::run_generate_arch(arch_options);

@@ -2,6 +2,7 @@
 
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "sutura/app/session_runner.hpp"
 
@@ -11,6 +12,19 @@ using nlohmann::json;
 
 ReplayResult replay(const Session& session, const ReplayOptions& options) {
   SessionRunner runner(session.file, session.description, options);
+  const auto fail = [&](const SessionError& error) {
+    try {
+      runner.write_report(runner.report("failed", error.what()));
+    } catch (const std::exception&) {
+      // The original error matters more than a report that could not be written.
+    }
+  };
+  try {
+    check_limits(session, options.limits);
+  } catch (const SessionError& error) {
+    fail(error);
+    throw;
+  }
   const std::size_t n = session.actions.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Action& a = session.actions[i];
@@ -21,12 +35,19 @@ ReplayResult replay(const Session& session, const ReplayOptions& options) {
     try {
       details = runner.execute(a);
     } catch (const SessionError& error) {
-      if (options.progress) *options.progress << " FAILED" << std::endl;
-      try {
-        runner.write_report(runner.report("failed", error.what()));
-      } catch (const std::exception&) {
-        // The original error matters more than a report that could not be written.
+      if (runner.stopped()) {  // the time limit: what was done is kept and reported
+        if (options.progress) *options.progress << " STOPPED" << std::endl;
+        ReplayResult result;
+        result.stopped = true;
+        std::ostringstream why;
+        why << "the time limit of " << options.time_limit << " s was reached (--time-limit): " << error.what();
+        result.report = runner.report("stopped", why.str());
+        runner.write_report(result.report);
+        result.workspace = runner.workspace();
+        return result;
       }
+      if (options.progress) *options.progress << " FAILED" << std::endl;
+      fail(error);
       throw;
     }
     if (options.progress) {

@@ -1,6 +1,7 @@
 #pragma once
 // The state of one replay and the execution of every op on it. replay.cpp runs the loop;
 // replay_scene_ops.cpp and replay_simulation_ops.cpp execute the two op families.
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,6 +36,19 @@ struct Run {
   // Files this run reads: the session (first) and every loaded mesh. No output may
   // overwrite one.
   std::vector<std::filesystem::path> inputs;
+
+  // Limits (options.limits, options.time_limit; limits.hpp).
+  /// States dropped from the bottom of the undo history to keep it within
+  /// options.limits.undo_megabytes (undo says so when it reaches them).
+  std::size_t undo_dropped = 0;
+  // options.time_limit from the start of the run (max when none); `stopped` once reached.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  bool stopped = false;
+  /// True (and `stopped` set) once the deadline has passed.
+  bool past_deadline();
+  /// Throws std::runtime_error naming the limit when the workspace exceeds
+  /// options.limits.faces_per_object, faces_in_all or objects.
+  void check_workspace_limits() const;
 
   // Output bookkeeping and the report (replay_scene_ops.cpp). `output` throws
   // std::invalid_argument for a path outside the output directory or one that is an input.

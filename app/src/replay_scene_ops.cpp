@@ -60,6 +60,29 @@ json Run::report(const std::string& status, const std::string& error, double tot
   return r;
 }
 
+bool Run::past_deadline() {
+  if (!stopped && std::chrono::steady_clock::now() >= deadline) stopped = true;
+  return stopped;
+}
+
+void Run::check_workspace_limits() const {
+  const Limits& l = options.limits;
+  std::size_t all = 0;
+  for (const SceneObject& o : workspace.objects()) {
+    all += o.mesh.num_faces();
+    if (o.mesh.num_faces() > l.faces_per_object)
+      throw std::runtime_error("object '" + o.name + "' has " + std::to_string(o.mesh.num_faces()) +
+                               " faces, more than the limit of " + std::to_string(l.faces_per_object) +
+                               " per object (--max-faces raises it)");
+  }
+  if (all > l.faces_in_all)
+    throw std::runtime_error("the objects have " + std::to_string(all) + " faces in all, more than the limit of " +
+                             std::to_string(l.faces_in_all) + " (--max-faces-in-all raises it)");
+  if (workspace.objects().size() > l.objects)
+    throw std::runtime_error(std::to_string(workspace.objects().size()) + " objects, more than the limit of " +
+                             std::to_string(l.objects) + " (--max-objects raises it)");
+}
+
 void Run::write_report(const fs::path& relative, const json& r) {
   // Invalid UTF-8 (a file name is any bytes) becomes U+FFFD instead of failing the dump.
   engine::write_file_atomically(output(relative), r.dump(2, ' ', false, json::error_handler_t::replace) + "\n");

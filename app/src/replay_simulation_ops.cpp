@@ -234,6 +234,7 @@ json Run::execute(const SolveOp& op) {
   MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &barrier : nullptr);
   if (op.minimize) require_conservative_pressure(merged);
   engine::StaticSolverParams params = op.params;
+  params.keep_going = [this] { return !past_deadline(); };
   params.lambda_start = start;
   params.lambda_end = op.load_factor;
   // One workspace for the solve and the stability check: the tangent's sparsity pattern is
@@ -309,6 +310,7 @@ json Run::relax(const SimulateOp& op) {
     throw std::runtime_error("nothing to relax: no suture since the last relaxation (use "
                              "simulate without relax to settle)");
   engine::RelaxationParams params = *op.relax;
+  params.statics.keep_going = [this] { return !past_deadline(); };
   params.s_start = s_start;
   if (params.s_end < s_start)
     throw std::runtime_error("relax.until " + std::to_string(params.s_end) +
@@ -375,6 +377,7 @@ bool Run::report_progress(const std::string& phase, int step, int steps,
                           const MergedSystem& merged, const std::vector<engine::Vec3>& x,
                           double s, double residual, int newton_iterations,
                           int quasi_newton_iterations) {
+  if (past_deadline()) return false;
   if (!options.on_progress) return true;
   RunProgress p;
   p.phase = phase;

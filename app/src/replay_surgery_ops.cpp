@@ -121,7 +121,8 @@ json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs
   return resample_json(m.edit, *std::min_element(m.spacing.begin(), m.spacing.end()));
 }
 
-// Keep memory bounded on long GUI sessions: each entry is a copy of every object.
+// Keep memory bounded on long GUI sessions: each entry is a copy of every object (and
+// options.limits.undo_megabytes bounds their size).
 constexpr std::size_t kMaxUndo = 64;
 
 json suture_report(const engine::SutureReport& s) {
@@ -180,13 +181,32 @@ json mesh_counts(const SceneObject& obj) {
 }  // namespace
 
 void Run::remember() {
-  undo_stack.push_back(workspace);
-  if (undo_stack.size() > kMaxUndo) undo_stack.erase(undo_stack.begin());
   redo_stack.clear();
+  // Within the memory budget: the oldest states go first; a state larger than the whole
+  // budget is not copied at all (a 2M-face workspace copied 70 times ran for minutes).
+  const std::size_t budget = options.limits.undo_megabytes << 20;
+  const std::size_t bytes = workspace_bytes(workspace);
+  std::size_t held = 0;
+  for (const Workspace& w : undo_stack) held += workspace_bytes(w);
+  while (!undo_stack.empty() && (undo_stack.size() >= kMaxUndo || held + bytes > budget)) {
+    held -= workspace_bytes(undo_stack.front());
+    undo_stack.erase(undo_stack.begin());
+    ++undo_dropped;
+  }
+  if (bytes > budget) {
+    ++undo_dropped;
+    return;
+  }
+  undo_stack.push_back(workspace);
 }
 
 json Run::execute(const UndoOp&) {
-  if (undo_stack.empty()) throw std::runtime_error("nothing to undo");
+  if (undo_stack.empty())
+    throw std::runtime_error(undo_dropped == 0 ? "nothing to undo"
+                                               : "nothing more to undo: the history keeps at most " +
+                                                     std::to_string(kMaxUndo) + " states and " +
+                                                     std::to_string(options.limits.undo_megabytes) +
+                                                     " MiB (--max-undo-mb raises it)");
   redo_stack.push_back(std::move(workspace));
   workspace = std::move(undo_stack.back());
   undo_stack.pop_back();
@@ -280,6 +300,7 @@ json Run::execute(const PatchOp& op) {
   SceneObject& obj = object(op.object);
   using SeamRemesh = PatchOp::SeamRemesh;
   engine::PatchPlanParams params = op.params;
+  params.max_faces = double(options.limits.faces_per_object);
   json remeshed;
   if (op.remesh == SeamRemesh::Matched) {
     // Each lip and the patch edge sutured to it get one count of equal segments at the

@@ -116,6 +116,10 @@ PatchOp parse_patch(Fields& f) {
   op.params.shape = engine::parse_patch_shape(
       f.optional_choice("shape", "ellipse", {"ellipse", "diamond", "triangle"}));
   op.params.width = f.optional_positive("width", op.params.width);
+  // A patch narrower than a suture bite is not a patch: laid into the slit it is a sliver the
+  // relaxation grinds on for minutes (a 2 um patch, ../shared/robustness/fuzzed_session_hang_a5c86ed71d).
+  constexpr double kMinPatchWidth = 0.5;  // mm
+  if (op.params.width < kMinPatchWidth) f.fail("width", "must be at least 0.5 mm (a suture bite)");
   op.params.length = f.optional_number("length", 0.0);
   if (op.params.length < 0.0) f.fail("length", "must be >= 0 (0 = the incision's length)");
   op.params.edge_length = f.optional_number("edge_length", 0.0);

@@ -25,7 +25,11 @@ struct SessionRunner::Impl {
   Impl(Session h, ReplayOptions o)
       : header(std::move(h)), options(std::move(o)),
         run{header, options, {}, {}, json::array(), json::array(),
-            json::object(), json::array(), json::object(), {}, {}, {header.file}} {}
+            json::object(), json::array(), json::object(), {}, {}, {header.file}} {
+    if (options.time_limit > 0)
+      run.deadline = start + std::chrono::duration_cast<clock_type::duration>(
+                                 std::chrono::duration<double>(options.time_limit));
+  }
   [[nodiscard]] double elapsed() const {
     return std::chrono::duration<double>(clock_type::now() - start).count();
   }
@@ -47,6 +51,8 @@ json SessionRunner::execute(const Action& a) {
   const auto t0 = clock_type::now();
   if (impl_->options.threads > 0) engine::set_compute_threads(impl_->options.threads);
   json details;
+  if (run.past_deadline())
+    throw SessionError(impl_->header.file.string(), a.line, a.name, "", "not run");
   try {
     details = std::visit(
         [&](const auto& op) -> json {
@@ -56,6 +62,7 @@ json SessionRunner::execute(const Action& a) {
             return run.execute(op);
         },
         a.op);
+    run.check_workspace_limits();
   } catch (const std::exception& e) {
     throw SessionError(impl_->header.file.string(), a.line, a.name, "", e.what());
   }
@@ -69,6 +76,8 @@ json SessionRunner::execute(const Action& a) {
 const Workspace& SessionRunner::workspace() const { return impl_->run.workspace; }
 
 const ReplayOptions& SessionRunner::options() const { return impl_->options; }
+
+bool SessionRunner::stopped() const { return impl_->run.stopped; }
 
 json SessionRunner::report(const std::string& status, const std::string& error) const {
   // The counts the report records are read on the calling thread: make them the run's.

@@ -1,6 +1,7 @@
 #pragma once
 // Parameter checks shared by the generators: each failure is an InvalidArgument naming the
 // operation, the parameter and the offending value.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -33,11 +34,12 @@ inline void require_at_least(const char* op, const char* name, int value, int mi
   }
 }
 
-inline void require_face_budget(const char* op, const std::string& what, double faces) {
-  if (faces > kMaxFaces) {
+inline void require_face_budget(const char* op, const std::string& what, double faces,
+                                double limit = kMaxFaces) {
+  if (faces > std::min(limit, kMaxFaces)) {
     throw InvalidArgument(std::string(op) + ": " + what + " would need about " +
                           format_number(faces) + " triangles, more than the limit of " +
-                          format_number(kMaxFaces));
+                          format_number(std::min(limit, kMaxFaces)));
   }
 }
 

@@ -424,7 +424,7 @@ SurfaceMesh make_patch(const PatchParams& p) {
   require_positive("make_patch", "target_edge_length", p.target_edge_length);
   // An equilateral mesh of edge h has 4 / (sqrt(3) h^2) triangles per unit area.
   require_face_budget("make_patch", "target_edge_length = " + format_number(p.target_edge_length),
-                      2.31 * patch_area(p) / (p.target_edge_length * p.target_edge_length));
+                      2.31 * patch_area(p) / (p.target_edge_length * p.target_edge_length), p.max_faces);
 
   const Outline outline = make_outline(p);
   Skeleton skeleton = choose_skeleton(outline);
@@ -440,6 +440,12 @@ SurfaceMesh make_patch(const PatchParams& p) {
     h = std::min(p.target_edge_length, spread.mean);
   }
   const int min_rings = skeleton.is_point() ? 1 : 2;
+  // The spacing may have shrunk to fit a narrow patch: the budget again, at the spacing used
+  // (a diamond 1e-5 mm long and 2 mm wide meshed ring after ring for minutes).
+  if (h < p.target_edge_length)
+    require_face_budget("make_patch", "a patch of " + format_number(p.length) + " x " + format_number(p.width) +
+                                          " mm, narrowed to a spacing of " + format_number(h) + " mm,",
+                        2.31 * patch_area(p) / (h * h), p.max_faces);
 
   PatchBuilder builder(outline, skeleton, h);
   constexpr int kSmoothingRounds = 4;

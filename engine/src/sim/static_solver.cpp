@@ -134,6 +134,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
         !failed.empty())
       return failed;
     if (rnorm <= std::max(params.tolerance * ref, roundoff)) return {};
+    if (params.keep_going && !params.keep_going()) return "stopped by the caller";
     if (it == params.max_iterations) {
       std::ostringstream m;
       m << "no convergence in " << params.max_iterations << " Newton iterations (residual "
@@ -311,6 +312,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
       ws.keep_factor(n);
       return {};
     }
+    if (params.keep_going && !params.keep_going()) return "stopped by the caller";
     if ((need_tangent && newton_steps == params.max_iterations) ||
         it == params.max_iterations * (qn_steps + 1)) {
       std::ostringstream m;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/surgery/seam_match.hpp"
@@ -72,6 +73,17 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
           ? params.edge_length
           : std::max(params.min_edge_length,
                      0.5 * (mean_edge(host, plan.lip_left) + mean_edge(host, plan.lip_right)));
+  pp.max_faces = params.max_faces;
+  // A patch is a few times as long as it is wide at most, or the other way round (a widening
+  // gusset); far beyond, it is a thread or a flap no planner means, meshed ring after ring or
+  // relaxed without end (a 2 mm patch on a 1e-5 mm or a 1e7 mm incision).
+  constexpr double kMaxAspect = 50.0;
+  if (!(pp.width <= kMaxAspect * pp.length && pp.length <= kMaxAspect * pp.width)) {
+    std::ostringstream m;
+    m << "a patch " << pp.width << " mm wide and " << pp.length
+      << " mm long: its width and length must be within a factor of " << kMaxAspect << " of each other";
+    throw InvalidArgument(m.str());
+  }
   plan.rest = make_patch(pp);
   plan.edge_length = pp.target_edge_length;
   const double hl = 0.5 * pp.length, hw = 0.5 * pp.width;

@@ -295,6 +295,16 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
       }
       streak = 0;
       ds *= 0.5;
+      // A failed increment is reported too (phase "retry", at the s it restarts from): a run
+      // of hard failures can take long, and the caller may want to stop it.
+      const int left = int(std::ceil((p.s_end - s) / ds - 1e-9));
+      RelaxationProgress retry{s, done, done + std::max(left, 0), r.residual, r.energy, "retry",
+                               result.newton_iterations - iterations_before,
+                               result.quasi_newton_iterations - quasi_before};
+      if (hook && !hook(retry)) {
+        result.cancelled = true;
+        return result;
+      }
       continue;
     }
     if (++streak >= 2 && ds < ds_planned) {

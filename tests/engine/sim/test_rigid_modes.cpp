@@ -17,10 +17,14 @@ void expect_restraints_kept(const std::vector<Vec3>& x, const Constraints& c,
     for (std::size_t v = 0; v < x.size(); ++v) {
       const Vec3 velocity = m.translation + m.rotation.cross(x[v] - m.point);
       for (int d = 0; d < 3; ++d) {
-        if (c.is_fixed(v, d)) EXPECT_NEAR(velocity(d), 0.0, 1e-9) << m.describe();
+        if (c.is_fixed(v, d)) {
+          EXPECT_NEAR(velocity(d), 0.0, 1e-9) << m.describe();
+        }
       }
       for (int d = 3; d < 6; ++d) {
-        if (c.is_fixed(v, d)) EXPECT_NEAR(m.rotation(d - 3), 0.0, 1e-9) << m.describe();
+        if (c.is_fixed(v, d)) {
+          EXPECT_NEAR(m.rotation(d - 3), 0.0, 1e-9) << m.describe();
+        }
       }
     }
 }

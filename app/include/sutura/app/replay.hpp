@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sutura/app/limits.hpp"
 #include "sutura/app/session.hpp"
 #include "sutura/app/workspace.hpp"
 
@@ -51,16 +52,26 @@ struct ReplayOptions {
   /// is per thread); 0 = leave them as they are (one per core unless the environment says
   /// otherwise). Position hashes depend on it; the report records it.
   int threads = 0;
+  /// Bounds on the work the session may ask for (limits.hpp), checked before it runs and as
+  /// it runs.
+  Limits limits;
+  /// Seconds, > 0: the run stops cleanly when this much time has passed, between ops or
+  /// inside a long one (dynamics, relaxation), with report.json written and status
+  /// "stopped"; 0 = no limit.
+  double time_limit = 0.0;
 };
 
 struct ReplayResult {
   Workspace workspace;   ///< final state of every object
   nlohmann::json report; ///< the content written to out_dir/report.json
+  bool stopped = false;  ///< the time limit ended the run (report status "stopped")
 };
 
-/// Runs `session`. On success writes out_dir/report.json with status "ok". On failure writes
-/// out_dir/report.json with status "failed" and the error (what was done up to then is kept),
-/// then throws SessionError naming the line and op that failed.
+/// Runs `session` after checking it against options.limits. On success writes
+/// out_dir/report.json with status "ok". When options.time_limit ends it, writes status
+/// "stopped" with the line it stopped at and returns (result.stopped). On failure (a limit
+/// included) writes out_dir/report.json with status "failed" and the error (what was done up
+/// to then is kept), then throws SessionError naming the line and op that failed.
 ReplayResult replay(const Session& session, const ReplayOptions& options);
 
 }  // namespace sutura::app

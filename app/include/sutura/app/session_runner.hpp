@@ -35,11 +35,16 @@ class SessionRunner {
   /// the op's details), also appended to the report. On failure throws SessionError naming
   /// the action's line and op (OpCancelled's message when on_progress cancelled it) and
   /// records nothing; the workspace keeps what the op did before failing, as a replay
-  /// reports it — callers that go on restore a checkpoint.
+  /// reports it — callers that go on restore a checkpoint. Past options.time_limit nothing
+  /// runs (SessionError; stopped()). After the op, a workspace beyond options.limits is an
+  /// error.
   nlohmann::json execute(const Action& action);
 
   [[nodiscard]] const Workspace& workspace() const;
   [[nodiscard]] const ReplayOptions& options() const;
+  /// options.time_limit has been reached: the action that was running stopped (its error says
+  /// where) or the next one was not run.
+  [[nodiscard]] bool stopped() const;
   /// The report.json content now, with `status` and (when non-empty) `error`.
   [[nodiscard]] nlohmann::json report(const std::string& status, const std::string& error = {}) const;
   /// Writes `report` atomically to out_dir/report.json.

@@ -53,6 +53,9 @@ struct PatchParams {
   /// mm, > 0; boundary and interior spacing aimed for. Reduced when the patch is too narrow
   /// for two rows of triangles of that size across it, so that triangles stay well shaped.
   double target_edge_length = 1.0;
+  /// Refused (InvalidArgument) when its estimated faces, at the spacing it would use, exceed
+  /// this (never more than the generators' ceiling of 2e7).
+  double max_faces = 2.0e7;
 };
 SurfaceMesh make_patch(const PatchParams& p);
 

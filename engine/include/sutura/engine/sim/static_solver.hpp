@@ -6,6 +6,7 @@
 // Levenberg-Marquardt shift; otherwise, under follower pressure, first the tangent without the
 // load stiffness (a descent step of the potential, see static_solver.cpp), then LDL^T on the
 // true tangent.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,10 @@ struct StaticSolverParams {
   /// the start state (without follower load stiffness), no iteration: the small-displacement
   /// answer of the linear benchmarks.
   bool linear = false;
+  /// Asked before every iteration (empty: never); false ends the load step as failed ("stopped
+  /// by the caller"), the state rolled back as for any failure: a time limit inside a long
+  /// solve.
+  std::function<bool()> keep_going;
 };
 
 struct NewtonIteration {

@@ -25,6 +25,8 @@ struct PatchPlanParams {
   /// patch is laid out, so that each edge pairs one to one with a lip resampled to the same
   /// count. 0: the edges as make_patch cuts them (the join pairs them by arc length).
   int left_segments = 0, right_segments = 0;
+  /// The patch is refused (InvalidArgument) when it would have more faces (PatchParams).
+  double max_faces = 2.0e7;
 };
 
 struct PatchPlan {
@@ -48,7 +50,8 @@ struct PatchPlan {
 /// The patch lies in the tangent plane at the incision's middle (long axis along the cut,
 /// normal along the host's), each vertex then projected onto the host surface.
 /// Throws InvalidArgument for an unknown configuration (no such lips, a triangle on a slit, an
-/// ellipse on a boundary incision) or bad sizes.
+/// ellipse on a boundary incision) or bad sizes: width and length more than a factor of 50
+/// apart, or more than max_faces faces.
 PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end,
                      const PatchPlanParams& params);
 

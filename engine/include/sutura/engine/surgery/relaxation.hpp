@@ -85,11 +85,12 @@ struct RelaxationProgress {
   int steps = 0;           ///< planned (static: done + what the current increment size needs)
   double residual = 0.0;   ///< |r| over free DOFs (static residual)
   double energy = 0.0;     ///< strain energy, N*mm
-  std::string phase;       ///< "relax", "settle" or "escape"
+  std::string phase;       ///< "relax", "settle", "escape" or "retry" (a failed increment, halved)
   int newton_iterations = 0;  ///< Newton iterations of this increment or step (retries included)
   int quasi_newton_iterations = 0;  ///< static: quasi-Newton steps of this increment (StaticResult)
 };
-/// Called after every increment/step; return false to cancel (the state is kept as it is).
+/// Called after every increment/step and failed increment; return false to cancel (the state is
+/// kept as it is: the last converged one).
 using RelaxationHook = std::function<bool(const RelaxationProgress&)>;
 
 struct RelaxationResult {
