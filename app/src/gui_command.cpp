@@ -13,7 +13,8 @@ CLI::App* add_gui_command(CLI::App& app, ui::GuiOptions& options) {
                   "Output directory for snapshots, exports and new session files")
       ->capture_default_str();
   gui->add_option("--record", options.record,
-                  "New session file to record into (default: OUT/session-<time>.jsonl)")
+                  "New session file to record into; never an existing one, which is refused "
+                  "(default: OUT/session-<time>.jsonl, numbered when taken)")
       ->excludes(session);
   gui->add_option("--script", options.script,
                   "Scripted input for tests and benchmarks (see docs/gui.md)");

@@ -66,3 +66,61 @@ TEST(SessionRecorder, ResumeContinuesAfterExistingLinesAndSaveAsCopies) {
   fs::remove(f);
   fs::remove(copy);
 }
+
+// Nothing is lost (issue 27): a recording is never replaced nor shared, an action that cannot
+// be written as JSON is refused before anything is written, and Save as never writes onto the
+// recording.
+TEST(SessionRecorder, AnExistingFileIsNeverReplaced) {
+  const fs::path f = temp_file("existing");
+  { std::ofstream(f) << "{\"format\": \"sutura-session\", \"version\": 3}\n{\"op\": \"x\"}\n"; }
+  const std::string before = read(f);
+  try {
+    SessionRecorder::create(f, "test");
+    FAIL() << "an existing file was opened for recording";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("exists already, and a recording is never overwritten"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(read(f), before);
+  fs::remove(f);
+}
+
+TEST(SessionRecorder, TwoRecordersNeverShareAFile) {
+  const fs::path f = temp_file("shared");
+  auto first = SessionRecorder::create(f, "test");
+  try {
+    SessionRecorder::resume(f);
+    FAIL() << "a second recorder opened the file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is being recorded by another sutura gui"), std::string::npos) << e.what();
+  }
+  first.append({{"op", "a"}});
+  EXPECT_EQ(first.lines(), 2);
+  fs::remove(f);
+}
+
+TEST(SessionRecorder, AnActionThatIsNotUtf8IsRefusedAndNothingWritten) {
+  const fs::path f = temp_file("utf8");
+  auto r = SessionRecorder::create(f, "test");
+  const std::string before = read(f);
+  EXPECT_THROW(r.append({{"op", "export"}, {"file", std::string("a\xff.ply")}}), std::runtime_error);
+  EXPECT_EQ(read(f), before);
+  EXPECT_EQ(r.lines(), 1);
+  EXPECT_EQ(r.append({{"op", "b"}}), 2);
+  fs::remove(f);
+}
+
+TEST(SessionRecorder, SaveAsNeverWritesOntoTheRecording) {
+  const fs::path f = temp_file("save");
+  auto r = SessionRecorder::create(f, "test");
+  r.append({{"op", "a"}});
+  const std::string text = read(f);
+  EXPECT_THROW(r.save_as(f), std::runtime_error);
+  EXPECT_EQ(read(f), text);
+  const fs::path copy = temp_file("save_copy");
+  { std::ofstream(copy) << "old"; }
+  r.save_as(copy);  // a Save as target chosen by the user is replaced, whole
+  EXPECT_EQ(read(copy), text);
+  fs::remove(f);
+  fs::remove(copy);
+}

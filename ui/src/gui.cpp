@@ -25,11 +25,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path default_record_path(const fs::path& out_dir) {
+// A new recording in out_dir: session-<time>.jsonl, or session-<time>-2.jsonl, ... when
+// another window started in the same second (files are created exclusively: none is shared or
+// replaced).
+SessionRecorder record_new_session(const fs::path& out_dir) {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-  return out_dir / ("session-" + std::string(stamp) + ".jsonl");
+  for (int k = 1;; ++k) {
+    const fs::path file = out_dir / ("session-" + std::string(stamp) + (k > 1 ? "-" + std::to_string(k) : "") + ".jsonl");
+    if (fs::exists(file) && k < 1000) continue;
+    try {
+      return SessionRecorder::create(file, "recorded by sutura gui");
+    } catch (const std::runtime_error&) {
+      if (!fs::exists(file) || k >= 1000) throw;  // not a race lost to another window
+    }
+  }
 }
 
 std::array<render::Point3, 2> bounds_of(const std::vector<ObjectArrays>& objects) {
@@ -140,9 +151,8 @@ int run_gui(const GuiOptions& options) {
     existing = app::load_session(options.session);
     recorder.emplace(SessionRecorder::resume(options.session));
   } else {
-    recorder.emplace(SessionRecorder::create(
-        options.record.empty() ? default_record_path(options.out_dir) : options.record,
-        "recorded by sutura gui"));
+    recorder.emplace(options.record.empty() ? record_new_session(options.out_dir)
+                                            : SessionRecorder::create(options.record, "recorded by sutura gui"));
   }
   app::ReplayOptions replay_options;
   replay_options.out_dir = options.out_dir;

@@ -2,9 +2,17 @@
 
 #include "sutura/app/session.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "sutura/engine/atomic_file.hpp"
 
 namespace sutura::ui {
 
@@ -14,6 +22,15 @@ namespace {
 
 [[noreturn]] void fail(const fs::path& file, const std::string& what) {
   throw std::runtime_error("session file " + file.string() + ": " + what);
+}
+
+// Takes the recording's exclusive advisory lock for as long as `out` is open: a second GUI
+// recording into the same file would interleave its lines with this one's.
+void lock_or_fail(std::FILE* out, const fs::path& file) {
+  if (::flock(::fileno(out), LOCK_EX | LOCK_NB) != 0) {
+    std::fclose(out);
+    fail(file, "is being recorded by another sutura gui; open a copy, or wait until that window is closed");
+  }
 }
 
 }  // namespace
@@ -35,8 +52,20 @@ SessionRecorder::~SessionRecorder() {
 
 SessionRecorder SessionRecorder::create(const fs::path& file, const std::string& description) {
   if (file.has_parent_path()) fs::create_directories(file.parent_path());
-  std::FILE* out = std::fopen(file.c_str(), "wb");
-  if (out == nullptr) fail(file, "cannot be created");
+  // Exclusive creation: an existing file (an earlier recording, an input) is never replaced.
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST)
+      fail(file, "exists already, and a recording is never overwritten: open it to continue it "
+                 "(sutura gui " + file.string() + "), or record into a new file");
+    fail(file, "cannot be created");
+  }
+  std::FILE* out = ::fdopen(fd, "wb");
+  if (out == nullptr) {
+    ::close(fd);
+    fail(file, "cannot be created");
+  }
+  lock_or_fail(out, file);
   SessionRecorder r(file, out, 0);
   const nlohmann::json header = {{"format", "sutura-session"},
                                  {"version", app::kSessionFormatVersion},
@@ -58,6 +87,7 @@ SessionRecorder SessionRecorder::resume(const fs::path& file) {
   }
   std::FILE* out = std::fopen(file.c_str(), "ab");
   if (out == nullptr) fail(file, "cannot be opened for appending");
+  lock_or_fail(out, file);
   if (last != '\n') {
     std::fputc('\n', out);
     ++lines;
@@ -67,7 +97,14 @@ SessionRecorder SessionRecorder::resume(const fs::path& file) {
 }
 
 int SessionRecorder::append(const nlohmann::json& op) {
-  const std::string line = op.dump() + "\n";
+  std::string line;
+  try {
+    line = op.dump() + "\n";
+  } catch (const nlohmann::json::type_error&) {
+    // Text that is not UTF-8 (a file name typed in another encoding) cannot be a JSON line;
+    // recorded as U+FFFD it would replay as another name. The op is refused before it runs.
+    throw std::runtime_error("cannot record this action: a name in it is not valid UTF-8");
+  }
   std::fseek(out_, 0, SEEK_END);
   const long start = std::ftell(out_);
   if (std::fwrite(line.data(), 1, line.size(), out_) != line.size() || std::fflush(out_) != 0)
@@ -89,9 +126,18 @@ void SessionRecorder::drop_last() {
 void SessionRecorder::save_as(const fs::path& target) const {
   std::fflush(out_);
   std::error_code ec;
+  if (fs::equivalent(file_, target, ec))
+    throw std::runtime_error("cannot save the session as " + target.string() + ": it is the recording itself");
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
-  fs::copy_file(file_, target, fs::copy_options::overwrite_existing, ec);
-  if (ec) throw std::runtime_error("cannot save the session as " + target.string() + ": " + ec.message());
+  std::ifstream in(file_, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error("cannot save the session as " + target.string() + ": the recording cannot be read");
+  try {
+    engine::write_file_atomically(target, text.str());  // a reader never sees half a file
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot save the session as " + target.string() + ": " + e.what());
+  }
 }
 
 }  // namespace sutura::ui

@@ -13,9 +13,14 @@ namespace sutura::ui {
 
 class SessionRecorder {
  public:
-  /// Creates `file` (parent directories too), replacing any existing one, with the header
-  /// line {"format": "sutura-session", "version": 1, "units": "mm", "description": ...}.
-  /// Throws std::runtime_error when it cannot be written.
+  /// Creates `file` (parent directories too) with the header line {"format":
+  /// "sutura-session", "version": ..., "units": "mm", "description": ...}. Never replaces a
+  /// file: one that exists is an error (created exclusively, O_EXCL). Throws
+  /// std::runtime_error when it exists or cannot be written.
+  ///
+  /// Both create() and resume() hold an exclusive advisory lock (flock) on the file while the
+  /// recorder lives: a second recorder on the same file, in this or another process (two GUIs),
+  /// throws instead of interleaving its lines.
   static SessionRecorder create(const std::filesystem::path& file, const std::string& description);
   /// Continues an existing session file: later lines are appended after its content (a
   /// missing final newline is added first). Throws std::runtime_error when it cannot be opened.
@@ -27,14 +32,16 @@ class SessionRecorder {
   ~SessionRecorder();
 
   /// Writes `op` as one line, flushed to the OS; returns its 1-based line number in the
-  /// file. Throws std::runtime_error on a write error.
+  /// file. Throws std::runtime_error on a write error, or, writing nothing, when a string in
+  /// `op` is not valid UTF-8.
   int append(const nlohmann::json& op);
   /// Removes the line written by the last append() (truncates the file to where it
   /// started). Lines appended before this recorder was opened are never removed.
   /// Throws std::logic_error when there is no such line.
   void drop_last();
-  /// Copies the file as it is now to `target` (File > Save session as); recording goes on
-  /// in the original file. Throws std::runtime_error on failure.
+  /// Copies the file as it is now to `target` (File > Save session as), atomically (a
+  /// temporary file renamed over it); recording goes on in the original file. Throws
+  /// std::runtime_error on failure or when `target` is the recording itself.
   void save_as(const std::filesystem::path& target) const;
 
   [[nodiscard]] const std::filesystem::path& file() const { return file_; }
