@@ -8,6 +8,16 @@ namespace fs = std::filesystem;
 
 std::string output_path_problem(const fs::path& relative) {
   if (relative.empty()) return "the path is empty";
+  // A NUL would cut the name short where the file is opened ("evil.sh\0.obj" wrote evil.sh);
+  // a newline or another control character makes a name no one can type or list safely.
+  for (const char c : relative.native()) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      return std::string("control characters are not allowed in names (byte 0x") + hex[byte >> 4] + hex[byte & 15] +
+             (byte == 0 ? ", NUL" : byte == '\n' ? ", newline" : "") + ")";
+    }
+  }
   if (relative.is_absolute() || relative.has_root_name() || relative.has_root_directory())
     return "absolute paths are not allowed: outputs are written only inside the output directory";
   for (const auto& part : relative) {

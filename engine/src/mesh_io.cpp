@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -421,6 +422,27 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
     }
   }
 
+  // A binary STL whose size is more than its 84 + 50 n bytes (trailing bytes, which some
+  // exporters write) is taken by assimp for ASCII and refused: it is read without the tail.
+  // An ASCII file's "count" (text at bytes 80-83) asks for far more bytes than it has.
+  std::string stl_body;
+  if (format == Format::Stl && size >= 84) {
+    std::ifstream in(file, std::ios::binary);
+    char header[84];
+    if (in.read(header, 84)) {
+      std::uint32_t n = 0;
+      static_assert(std::endian::native == std::endian::little, "STL counts are little-endian");
+      std::memcpy(&n, header + 80, 4);
+      const std::uintmax_t expected = 84 + 50 * std::uintmax_t(n);
+      if (n > 0 && expected < size) {
+        stl_body.assign(header, 84);
+        stl_body.resize(std::size_t(expected));
+        if (!in.read(stl_body.data() + 84, std::streamsize(expected - 84)))
+          fail(Kind::Unreadable, file, "cannot read its triangles");
+      }
+    }
+  }
+
   Assimp::Importer importer;
   const auto read = [&](const auto& step) {
     const aiScene* scene = nullptr;
@@ -434,7 +456,10 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
     }
     return scene;
   };
-  check_raw_scene(*read([&] { return importer.ReadFile(file.string(), 0); }), file);
+  check_raw_scene(*read([&] {
+    return stl_body.empty() ? importer.ReadFile(file.string(), 0)
+                            : importer.ReadFileFromMemory(stl_body.data(), stl_body.size(), 0, "stl");
+  }), file);
   // No aiProcess_JoinIdenticalVertices: it merges exact duplicates only; weld() does both.
   const aiScene* scene = read(
       [&] { return importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType); });

@@ -35,6 +35,11 @@ TEST(OutputPaths, RejectsEscapes) {
   EXPECT_NE(output_path_problem("a/../../b.png"), "");
   EXPECT_NE(output_path_problem("a/.."), "");
   EXPECT_NE(output_path_problem("dir/"), "");
+  // Control characters (issue 27): a NUL cut "evil.sh\0.obj" short to evil.sh.
+  EXPECT_NE(output_path_problem(fs::path(std::string("evil.sh\0.obj", 12))).find("byte 0x00, NUL"), std::string::npos);
+  EXPECT_NE(output_path_problem("a\nb.obj").find("byte 0x0a, newline"), std::string::npos);
+  EXPECT_NE(output_path_problem("a\tb.obj"), "");
+  EXPECT_EQ(output_path_problem("caf\xc3\xa9 1.obj"), "");  // UTF-8 and spaces are fine
   fs::path out = fresh_dir("esc");
   EXPECT_THROW(resolve_output_path(out, "/tmp/x.png"), std::invalid_argument);
   EXPECT_THROW(resolve_output_path(out, "a/../../x.png"), std::invalid_argument);

@@ -405,6 +405,20 @@ TEST(LoadErrors, TruncatedBinaryStl) {
   expect_load_error(dir / "short.stl", Kind::Unreadable, "cannot be read");
 }
 
+// Trailing bytes after a binary STL's triangles (some exporters pad) are ignored: assimp took
+// such a file for ASCII and refused it (issue 27).
+TEST(LoadMesh, BinaryStlWithTrailingBytesLoads) {
+  const TempDir dir;
+  const std::string stl = binary_stl({{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)},
+                                      {Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}});
+  write_bytes(dir / "exact.stl", stl);
+  write_bytes(dir / "padded.stl", stl + std::string("\n\0\0trailing", 12));
+  const SurfaceMesh exact = load_mesh(dir / "exact.stl"), padded = load_mesh(dir / "padded.stl");
+  EXPECT_EQ(padded.num_faces(), 2u);
+  EXPECT_EQ(padded.positions(), exact.positions());
+  EXPECT_EQ(padded.faces(), exact.faces());
+}
+
 TEST(LoadErrors, PlyHeaderCutShort) {
   // assimp itself would never return on these.
   const TempDir dir;
