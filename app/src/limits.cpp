@@ -65,6 +65,10 @@ void check_limits(const Session& session, const Limits& limits) {
           refuse(session, a, "edge_length", "a patch of about ", faces, " faces", double(limits.faces_per_object),
                  "--max-faces");
       }
+    } else if (const auto* shot = std::get_if<SnapshotOp>(&a.op)) {
+      const double pixels = double(shot->width) * double(shot->height) * (shot->side_by_side ? 2.0 : 1.0);
+      if (pixels > double(limits.pixels))
+        refuse(session, a, "width", "a snapshot of ", pixels, " pixels", double(limits.pixels), "--max-pixels");
     } else if (const auto* r = std::get_if<SimulateOp>(&a.op)) {
       const double steps = r->relax ? double(r->relax->steps) + double(r->relax->settle_steps)
                                     : double(r->params.steps);

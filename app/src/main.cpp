@@ -147,6 +147,9 @@ int main(int argc, char** argv) {
   replay->add_option("--max-steps", limits.steps, "Most steps of one simulate (dynamics steps, relaxation increments and settling steps)")
       ->capture_default_str()
       ->check(CLI::Range(1L, 10'000'000L));
+  replay->add_option("--max-pixels", limits.pixels, "Most pixels of one snapshot (all its views)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(256), std::size_t(1) << 31));
   replay->add_option("--max-undo-mb", limits.undo_megabytes, "Most memory the undo history holds, MiB")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20));
