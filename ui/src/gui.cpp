@@ -33,7 +33,10 @@ SessionRecorder record_new_session(const fs::path& out_dir) {
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
   for (int k = 1;; ++k) {
-    const fs::path file = out_dir / ("session-" + std::string(stamp) + (k > 1 ? "-" + std::to_string(k) : "") + ".jsonl");
+    std::string name = "session-";
+    name += stamp;
+    if (k > 1) name += '-', name += std::to_string(k);
+    const fs::path file = out_dir / (name + ".jsonl");
     if (fs::exists(file) && k < 1000) continue;
     try {
       return SessionRecorder::create(file, "recorded by sutura gui");
