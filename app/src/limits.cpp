@@ -81,16 +81,13 @@ void check_limits(const Session& session, const Limits& limits) {
   }
 }
 
-std::size_t workspace_bytes(const Workspace& workspace) {
+std::size_t object_bytes(const SceneObject& o) {
   // Per vertex: the mesh, pre-operative and reference positions, the state (position and a
   // triad), velocity, constraints and loads: about 30 doubles. Per face: indices in the mesh
   // and the pre-operative mesh, the rest element (3 points and its derived data), material:
   // about 40 doubles. Halfedge connectivity: 3 per face, twins and vertex links.
-  std::size_t bytes = 0;
-  for (const SceneObject& o : workspace.objects())
-    bytes += 240 * (o.mesh.num_vertices() + o.before.num_vertices()) +
-             400 * (o.mesh.num_faces() + o.before.num_faces());
-  return bytes;
+  return 240 * (o.mesh.num_vertices() + o.before.num_vertices()) +
+         400 * (o.mesh.num_faces() + o.before.num_faces());
 }
 
 }  // namespace sutura::app

@@ -30,8 +30,13 @@ struct Run {
   // Undo/redo: the workspace before each change (edits, constraints, loads, runs).
   std::vector<Workspace> undo_stack;
   std::vector<Workspace> redo_stack;
-  /// Pushes the current workspace for undo and clears redo; called by every changing op.
+  /// Pushes the current workspace for undo and clears redo; called by every changing op
+  /// before it takes an object to edit.
   void remember();
+  /// Drops the oldest undo states until the history holds at most kMaxUndo states and
+  /// options.limits.undo_megabytes of objects that the current workspace does not share;
+  /// called after every op.
+  void trim_history();
 
   // Files this run reads: the session (first) and every loaded mesh. No output may
   // overwrite one.
@@ -53,7 +58,10 @@ struct Run {
   // Output bookkeeping and the report (replay_scene_ops.cpp). `output` throws
   // std::invalid_argument for a path outside the output directory or one that is an input.
   std::filesystem::path output(const std::filesystem::path& relative);
-  SceneObject& object(const std::string& name);
+  /// The named object, to read / to change (copied first if the undo history shares it;
+  /// see Workspace::edit). Both throw std::runtime_error naming the objects there are.
+  const SceneObject& object(const std::string& name) const;
+  SceneObject& edit(const std::string& name);
   json report(const std::string& status, const std::string& error, double total) const;
   void write_report(const std::filesystem::path& relative, const json& r);
 

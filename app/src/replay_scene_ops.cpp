@@ -25,11 +25,21 @@ fs::path Run::output(const fs::path& relative) {
   return p;
 }
 
-SceneObject& Run::object(const std::string& name) {
-  SceneObject* o = workspace.find(name);
-  if (o == nullptr)
-    throw std::runtime_error("no object named '" + name + "' (objects: " + workspace.names() +
-                             ")");
+namespace {
+[[noreturn]] void no_object(const Workspace& w, const std::string& name) {
+  throw std::runtime_error("no object named '" + name + "' (objects: " + w.names() + ")");
+}
+}  // namespace
+
+const SceneObject& Run::object(const std::string& name) const {
+  const SceneObject* o = workspace.find(name);
+  if (o == nullptr) no_object(workspace, name);
+  return *o;
+}
+
+SceneObject& Run::edit(const std::string& name) {
+  SceneObject* o = workspace.edit(name);
+  if (o == nullptr) no_object(workspace, name);
   return *o;
 }
 
@@ -107,7 +117,7 @@ json Run::execute(const GenerateOp& op) {
     mesh.set_positions(std::move(moved));
   }
   if (op.append) {
-    SceneObject& obj = object(op.object);
+    SceneObject& obj = edit(op.object);
     engine::append_component(obj.mesh, obj.sim, mesh, mesh, obj.sim.materials.front());
     obj.before = obj.mesh;  // the new part is part of the pre-operative scene
     return {{"object", op.object}, {"appended", true}, {"vertices", obj.mesh.num_vertices()},

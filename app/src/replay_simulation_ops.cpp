@@ -144,12 +144,11 @@ std::vector<engine::VertexId> Run::resolve(const SceneObject& obj, const VertexS
 }
 
 std::vector<SceneObject*> Run::objects_named(const std::vector<std::string>& names) {
+  std::vector<std::string> which = names;
+  if (which.empty())
+    for (const auto& o : workspace.objects()) which.push_back(o.name);
   std::vector<SceneObject*> out;
-  if (names.empty()) {
-    for (const auto& o : workspace.objects()) out.push_back(workspace.find(o.name));
-  } else {
-    for (const auto& n : names) out.push_back(&object(n));
-  }
+  for (const auto& n : which) out.push_back(&edit(n));
   if (out.empty()) throw std::runtime_error("nothing to simulate: the session has no objects yet");
   return out;
 }
@@ -157,7 +156,7 @@ std::vector<SceneObject*> Run::objects_named(const std::vector<std::string>& nam
 json Run::execute(const MaterialOp& op) {
   remember();
   engine::validate(op.material);
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   obj.sim.materials = {op.material};
   obj.sim.face_material.assign(obj.mesh.num_faces(), 0);
   json out = {{"object", op.object}};
@@ -167,7 +166,7 @@ json Run::execute(const MaterialOp& op) {
 
 json Run::execute(const ConstrainOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   const auto ids = resolve(obj, op.where);
   obj.sim.constraints.fix(ids, op.dofs, obj.mesh.num_vertices());
   return {{"object", op.object}, {"vertices", ids.size()}};
@@ -175,7 +174,7 @@ json Run::execute(const ConstrainOp& op) {
 
 json Run::execute(const ForceOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   const auto ids = resolve(obj, op.where);
   const double share = op.per_node ? 1.0 : 1.0 / static_cast<double>(ids.size());
   for (auto v : ids)
@@ -185,7 +184,7 @@ json Run::execute(const ForceOp& op) {
 
 json Run::execute(const LineLoadOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   const auto ids = resolve(obj, op.where);
   const auto chain = boundary_chain(obj, ids);
   const auto loads = engine::lump_line_load(obj.mesh.positions(), chain, op.force_per_length);
@@ -195,14 +194,14 @@ json Run::execute(const LineLoadOp& op) {
 
 json Run::execute(const PressureOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   obj.sim.pending_loads.pressures.push_back({{}, op.pressure});
   return {{"object", op.object}};
 }
 
 json Run::execute(const BodyForceOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   if (op.per_area) {
     obj.sim.pending_loads.body_force_per_area += *op.per_area;
   } else {
@@ -393,7 +392,7 @@ bool Run::report_progress(const std::string& phase, int step, int steps,
 }
 
 json Run::execute(const ProbeOp& op) {
-  SceneObject& obj = object(op.object);
+  const SceneObject& obj = object(op.object);
   // Vertices are found and measured from where their material points were before the
   // operation (carried across incisions and sutures).
   const auto& reference = obj.sim.reference;

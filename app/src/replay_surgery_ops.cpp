@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 #include <Eigen/Dense>
 
@@ -121,8 +122,7 @@ json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs
   return resample_json(m.edit, *std::min_element(m.spacing.begin(), m.spacing.end()));
 }
 
-// Keep memory bounded on long GUI sessions: each entry is a copy of every object (and
-// options.limits.undo_megabytes bounds their size).
+// Undo depth, whatever the memory: a GUI's history need not be longer.
 constexpr std::size_t kMaxUndo = 64;
 
 json suture_report(const engine::SutureReport& s) {
@@ -182,22 +182,31 @@ json mesh_counts(const SceneObject& obj) {
 
 void Run::remember() {
   redo_stack.clear();
-  // Within the memory budget: the oldest states go first; a state larger than the whole
-  // budget is not copied at all (a 2M-face workspace copied 70 times ran for minutes).
+  undo_stack.push_back(workspace);  // shares every object until the op edits one
+}
+
+void Run::trim_history() {
+  // Memory of the history: objects of the undo states that neither the current workspace
+  // nor a redo state holds, each counted once (states share the objects that did not change
+  // between them). Undo and redo only move states between the stacks, so this grows only
+  // with a change, and the redo states, earlier undo states or the workspace itself, stay
+  // within what the budget allowed.
+  const auto held = [&] {
+    std::unordered_set<const SceneObject*> seen;
+    for (const auto& o : workspace.objects()) seen.insert(&o);
+    for (const Workspace& w : redo_stack)
+      for (const auto& o : w.objects()) seen.insert(&o);
+    std::size_t bytes = 0;
+    for (const Workspace& w : undo_stack)
+      for (const auto& o : w.objects())
+        if (seen.insert(&o).second) bytes += object_bytes(o);
+    return bytes;
+  };
   const std::size_t budget = options.limits.undo_megabytes << 20;
-  const std::size_t bytes = workspace_bytes(workspace);
-  std::size_t held = 0;
-  for (const Workspace& w : undo_stack) held += workspace_bytes(w);
-  while (!undo_stack.empty() && (undo_stack.size() >= kMaxUndo || held + bytes > budget)) {
-    held -= workspace_bytes(undo_stack.front());
+  while (!undo_stack.empty() && (undo_stack.size() > kMaxUndo || held() > budget)) {
     undo_stack.erase(undo_stack.begin());
     ++undo_dropped;
   }
-  if (bytes > budget) {
-    ++undo_dropped;
-    return;
-  }
-  undo_stack.push_back(workspace);
 }
 
 json Run::execute(const UndoOp&) {
@@ -223,7 +232,7 @@ json Run::execute(const RedoOp&) {
 
 json Run::execute(const InciseOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   engine::IncisionParams params = op.params;
   if (params.remesh) {
     params.constrained_vertices = kept_vertices(obj);
@@ -248,7 +257,7 @@ json Run::execute(const InciseOp& op) {
 
 json Run::execute(const JoinOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   std::vector<engine::SuturePair> pairs;
   for (std::size_t i = 0; i < op.sutures.size(); ++i) {
     try {
@@ -297,7 +306,7 @@ json Run::execute(const JoinOp& op) {
 
 json Run::execute(const PatchOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   using SeamRemesh = PatchOp::SeamRemesh;
   engine::PatchPlanParams params = op.params;
   params.max_faces = double(options.limits.faces_per_object);
@@ -373,7 +382,7 @@ json Run::execute(const PatchOp& op) {
 
 json Run::execute(const ResectOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   engine::Vec3 seed = engine::Vec3::Zero();
   if (op.seed) {
     seed = *op.seed;
@@ -439,7 +448,7 @@ json Run::execute(const ResectOp& op) {
 
 json Run::execute(const RemeshOp& op) {
   remember();
-  SceneObject& obj = object(op.object);
+  SceneObject& obj = edit(op.object);
   engine::RemeshParams p;
   if (!op.near.empty()) {
     p.region = engine::faces_near_polyline(obj.mesh, op.near, op.radius);

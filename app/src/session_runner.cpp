@@ -63,6 +63,7 @@ json SessionRunner::execute(const Action& a) {
         },
         a.op);
     run.check_workspace_limits();
+    run.trim_history();
   } catch (const std::exception& e) {
     throw SessionError(impl_->header.file.string(), a.line, a.name, "", e.what());
   }

@@ -186,8 +186,9 @@ std::array<render::Point3, 2> merge(const std::array<render::Point3, 2>& a,
 
 render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& workspace) {
   std::vector<const SceneObject*> selected;
+  const auto all = workspace.objects();
   if (op.objects.empty()) {
-    for (const auto& o : workspace.objects()) selected.push_back(&o);
+    for (const auto& o : all) selected.push_back(&o);
   } else {
     for (const auto& name : op.objects) {
       const SceneObject* o = workspace.find(name);
@@ -202,7 +203,8 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   std::vector<ObjectArrays> after, before;
   for (std::size_t i = 0; i < selected.size(); ++i) {
     // Colour by position in the workspace so an object keeps its colour across snapshots.
-    const auto index = static_cast<std::size_t>(selected[i] - workspace.objects().data());
+    std::size_t index = 0;
+    while (&all[index] != selected[i]) ++index;
     const render::Color color = render::object_color(index);
     after.push_back(arrays_for(op, *selected[i], selected[i]->mesh, color));
     if (op.side_by_side)

@@ -123,7 +123,25 @@ TEST(Limits, TheUndoHistoryStaysWithinItsMemory) {
   one.limits.undo_megabytes = 1;
   const std::string e2 = refusal(edits + "{\"op\": \"undo\"}\n{\"op\": \"undo\"}\n", 6, "", one);
   EXPECT_NE(e2.find("nothing more to undo"), std::string::npos) << e2;
-  EXPECT_LT(workspace_bytes(run(kHeader + tube("t", 24, 20), "bytes").workspace), std::size_t(1) << 20);
+  EXPECT_LT(object_bytes(run(kHeader + tube("t", 24, 20), "bytes").workspace.objects().front()),
+            std::size_t(1) << 20);
+}
+
+// The history shares what did not change: 30 tubes generated one by one cost it nothing, where
+// whole copies would have held 435 tubes (about 260 MB).
+TEST(Limits, TheUndoHistoryHoldsOnlyWhatChanged) {
+  std::string s = kHeader;
+  for (int i = 0; i < 30; ++i) s += tube("t" + std::to_string(i), 24, 20);
+  s += "{\"op\": \"material\", \"object\": \"t3\", \"thickness\": 0.5}\n";
+  for (int i = 0; i < 31; ++i) s += "{\"op\": \"undo\"}\n";
+  for (int i = 0; i < 31; ++i) s += "{\"op\": \"redo\"}\n";
+  ReplayOptions one;
+  one.limits.undo_megabytes = 1;  // one changed tube (0.6 MB) fits, two do not
+  const ReplayResult r = run(s, "shared", one);
+  ASSERT_EQ(r.report["status"], "ok") << r.report.dump();
+  ASSERT_EQ(r.workspace.objects().size(), 30u);
+  EXPECT_EQ(r.workspace.find("t3")->sim.materials.front().thickness, 0.5);
+  EXPECT_EQ(r.workspace.find("t4")->sim.materials.front().thickness, sutura::engine::ShellMaterial{}.thickness);
 }
 
 TEST(Limits, ATimeLimitStopsARunCleanlyWithItsReport) {

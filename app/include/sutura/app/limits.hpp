@@ -11,6 +11,7 @@
 namespace sutura::app {
 
 class Workspace;
+struct SceneObject;
 
 struct Limits {
   /// Faces of one object: a generated or loaded mesh, an object a patch or an appended part
@@ -37,8 +38,8 @@ struct Limits {
 /// line, op and field, the amount and the limit with its flag. Cost O(actions).
 void check_limits(const Session& session, const Limits& limits);
 
-/// Estimated bytes a copy of `workspace` holds (meshes, states, rest shapes, per-element and
-/// per-vertex data): what an undo entry costs. O(objects).
-std::size_t workspace_bytes(const Workspace& workspace);
+/// Estimated bytes one object holds (meshes, state, rest shape, per-element and per-vertex
+/// data): what the undo history pays for each version of an object an op changed. O(1).
+std::size_t object_bytes(const SceneObject& object);
 
 }  // namespace sutura::app

@@ -1,6 +1,14 @@
 #pragma once
 // The objects a session works on, by name, in the order they were created.
-#include <optional>
+//
+// Copies share objects (copy-on-write): copying a Workspace copies one pointer per object,
+// and an object is copied only when it is edited through a workspace that shares it. The
+// undo history (app/src/replay_surgery_ops.cpp, Run::remember) is therefore a list of
+// workspaces in which an op that changed one object of ten holds one new object, not ten.
+// Not thread-safe: a workspace and its copies are used from one thread at a time.
+#include <cstddef>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,19 +28,60 @@ struct SceneObject {
 };
 
 class Workspace {
+  using Slots = std::vector<std::shared_ptr<SceneObject>>;
+
  public:
+  /// Read-only view of the objects in creation order (a random-access range of
+  /// `const SceneObject&`). Invalidated by add(), edit() and assignment.
+  class Objects {
+   public:
+    class iterator {
+     public:
+      using iterator_category = std::forward_iterator_tag;
+      using value_type = SceneObject;
+      using difference_type = std::ptrdiff_t;
+      using pointer = const SceneObject*;
+      using reference = const SceneObject&;
+      iterator() = default;
+      explicit iterator(Slots::const_iterator it) : it_(it) {}
+      reference operator*() const { return **it_; }
+      pointer operator->() const { return it_->get(); }
+      iterator& operator++() { ++it_; return *this; }
+      iterator operator++(int) { iterator t = *this; ++it_; return t; }
+      bool operator==(const iterator& o) const { return it_ == o.it_; }
+      bool operator!=(const iterator& o) const { return it_ != o.it_; }
+
+     private:
+      Slots::const_iterator it_;
+    };
+    explicit Objects(const Slots& slots) : slots_(&slots) {}
+    [[nodiscard]] iterator begin() const { return iterator(slots_->begin()); }
+    [[nodiscard]] iterator end() const { return iterator(slots_->end()); }
+    [[nodiscard]] std::size_t size() const { return slots_->size(); }
+    [[nodiscard]] bool empty() const { return slots_->empty(); }
+    [[nodiscard]] const SceneObject& operator[](std::size_t i) const { return *(*slots_)[i]; }
+    [[nodiscard]] const SceneObject& front() const { return *slots_->front(); }
+
+   private:
+    const Slots* slots_;
+  };
+
   /// Adds an object at rest (rest state congruent with the mesh, identity nodal triads,
   /// default material); throws std::invalid_argument if the name is taken.
   SceneObject& add(std::string name, engine::SurfaceMesh mesh);
+  /// The object to change, copied first if another workspace shares it (O(object size)
+  /// then, O(objects) otherwise); nullptr when no object has that name. The reference stays
+  /// valid until the next add() or assignment; a copy of this workspace made while it is
+  /// held shares the object, so take copies before editing, never in between.
+  [[nodiscard]] SceneObject* edit(const std::string& name);
   /// nullptr when no object has that name.
-  [[nodiscard]] SceneObject* find(const std::string& name);
   [[nodiscard]] const SceneObject* find(const std::string& name) const;
-  [[nodiscard]] const std::vector<SceneObject>& objects() const { return objects_; }
+  [[nodiscard]] Objects objects() const { return Objects(objects_); }
   /// "a, b, c" for messages.
   [[nodiscard]] std::string names() const;
 
  private:
-  std::vector<SceneObject> objects_;
+  Slots objects_;
 };
 
 }  // namespace sutura::app
