@@ -6,6 +6,7 @@
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/compute_threads.hpp"
+#include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
 namespace sutura::app::detail {
@@ -132,8 +133,24 @@ json Run::execute(const LoadOp& op) {
   remember();
   engine::ImportOptions io;
   io.weld_tolerance = op.weld_tolerance;
+  // Counted before the file is parsed: a file far above the limits is refused in a second.
+  const Limits& l = options.limits;
+  std::size_t present = 0;
+  for (const SceneObject& o : workspace.objects()) present += o.mesh.num_faces();
+  const std::size_t room = l.faces_in_all > present ? l.faces_in_all - present : 0;
+  io.max_faces = std::max<std::size_t>(1, std::min(l.faces_per_object, room));
   inputs.push_back(op.file);
-  const auto& obj = workspace.add(op.object, engine::load_mesh(op.file, io));
+  engine::SurfaceMesh mesh;
+  try {
+    mesh = engine::load_mesh(op.file, io);
+  } catch (const engine::MeshIoError& e) {
+    if (e.kind() != engine::MeshIoError::Kind::TooLarge) throw;
+    throw std::runtime_error(std::string(e.what()) +
+                             (l.faces_per_object <= room ? " faces per object (--max-faces raises it)"
+                                                         : " faces left of the limit of " + std::to_string(l.faces_in_all) +
+                                                               " in all (--max-faces-in-all raises it)"));
+  }
+  const auto& obj = workspace.add(op.object, std::move(mesh));
   return {{"object", op.object}, {"file", op.file.generic_string()},
           {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};
 }

@@ -56,6 +56,73 @@ Format require_format(const fs::path& file) {
   return *format;
 }
 
+// Triangles a text file's lines give: `facet` lines (ASCII STL) or `f` lines with k corners,
+// k - 2 each (OBJ). Streams the file in 1 MiB blocks; a line is judged by its first two
+// tokens only, so a long line costs no memory.
+std::uintmax_t count_text_triangles(const fs::path& file, Format format) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> block(std::size_t(1) << 20);
+  std::uintmax_t triangles = 0;
+  // Per line: the first token (up to 8 chars), whether it is complete, and for an `f` line
+  // the number of corner tokens seen so far.
+  std::string first;
+  bool in_first = true, leading = true, face = false, in_token = false;
+  std::uintmax_t corners = 0;
+  const auto end_line = [&] {
+    if (face && corners >= 3) triangles += corners - 2;
+    first.clear();
+    in_first = leading = true;
+    face = in_token = false;
+    corners = 0;
+  };
+  while (in) {
+    in.read(block.data(), std::streamsize(block.size()));
+    const std::streamsize got = in.gcount();
+    for (std::streamsize i = 0; i < got; ++i) {
+      const char c = block[std::size_t(i)];
+      if (c == '\n' || c == '\r') {
+        end_line();
+        continue;
+      }
+      const bool space = c == ' ' || c == '\t';
+      if (in_first) {
+        if (space) {
+          if (leading) continue;
+          in_first = false;
+          if (format == Format::Stl) {
+            if (first == "facet") ++triangles;
+          } else {
+            face = first == "f";
+          }
+        } else {
+          leading = false;
+          if (first.size() < 8) first += c;
+        }
+      } else if (face) {
+        if (!space && !in_token) ++corners;
+        in_token = !space;
+      }
+    }
+  }
+  end_line();
+  return triangles;
+}
+
+// The triangles `file` holds, from its header or one pass over its text (see
+// ImportOptions::max_faces). A PLY's were counted by ply_structure_problem.
+std::uintmax_t count_triangles(const fs::path& file, Format format, std::uintmax_t size,
+                               std::uint64_t ply_triangles) {
+  if (format == Format::Ply) return ply_triangles;
+  if (format == Format::Stl && size >= 84) {
+    std::ifstream in(file, std::ios::binary);
+    char header[84];
+    std::uint32_t n = 0;
+    if (in.read(header, 84)) std::memcpy(&n, header + 80, 4);
+    if (n > 0 && 84 + 50 * std::uintmax_t(n) <= size) return n;  // binary, as load_mesh reads it
+  }
+  return count_text_triangles(file, format);
+}
+
 std::string format_point(const Vec3& p) {
   std::ostringstream os;
   os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
@@ -414,12 +481,20 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
     fail(Kind::Empty, file, no_triangles);
   }
 
+  std::uint64_t ply_triangles = 0;
   if (format == Format::Ply) {  // see ply_check.hpp: assimp's PLY reader can hang or crash
     std::ifstream in(file, std::ios::binary);
     const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (const auto problem = detail::ply_structure_problem(bytes)) {
+    if (const auto problem = detail::ply_structure_problem(bytes, &ply_triangles)) {
       fail(Kind::Unreadable, file, *problem);
     }
+  }
+  if (options.max_faces > 0) {
+    const std::uintmax_t n = count_triangles(file, format, size, ply_triangles);
+    if (n > options.max_faces)
+      fail(Kind::TooLarge, file,
+           "holds " + std::to_string(n) + " triangles, more than the limit of " +
+               std::to_string(options.max_faces));
   }
 
   // A binary STL whose size is more than its 84 + 50 n bytes (trailing bytes, which some

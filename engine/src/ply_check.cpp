@@ -126,7 +126,17 @@ std::string entry_name(const Element& e, std::uint64_t i) {
   return e.name + " entry " + std::to_string(i) + " of " + std::to_string(e.count);
 }
 
-std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element>& elements) {
+// The triangles a polygon of `corners` corners becomes, counted for the first list of a
+// `face` element (as assimp triangulates it).
+void count_polygon(const Element& e, const Property& p, std::uint64_t corners,
+                   std::uint64_t& triangles) {
+  if (e.name == "face" && &p == &*std::find_if(e.properties.begin(), e.properties.end(),
+                                               [](const Property& q) { return q.list; }))
+    triangles += corners >= 3 ? corners - 2 : 0;
+}
+
+std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element>& elements,
+                                       std::uint64_t& triangles) {
   std::vector<std::string_view> words;
   for (const Element& e : elements) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
@@ -147,6 +157,7 @@ std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element
           return entry_name(e, i) + " announces a list of " + std::to_string(*length) +
                  " values but holds fewer";
         }
+        count_polygon(e, p, *length, triangles);
         w += *length;
       }
     }
@@ -155,7 +166,7 @@ std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element
 }
 
 std::optional<std::string> check_binary(Reader& reader, const std::vector<Element>& elements,
-                                        Encoding encoding) {
+                                        Encoding encoding, std::uint64_t& triangles) {
   for (const Element& e : elements) {
     if (e.properties.empty()) continue;
     for (std::uint64_t i = 0; i < e.count; ++i) {
@@ -166,6 +177,7 @@ std::optional<std::string> check_binary(Reader& reader, const std::vector<Elemen
               reader.read_length(p.length_size, p.length_signed, encoding);
           if (!length) return "the data ends in or has a bad list length in " + entry_name(e, i);
           values = *length;
+          count_polygon(e, p, values, triangles);
         }
         if (values > reader.remaining() / p.size || !reader.skip(values * p.size)) {
           return "the data ends in " + entry_name(e, i);
@@ -178,7 +190,8 @@ std::optional<std::string> check_binary(Reader& reader, const std::vector<Elemen
 
 }  // namespace
 
-std::optional<std::string> ply_structure_problem(std::string_view bytes) {
+std::optional<std::string> ply_structure_problem(std::string_view bytes, std::uint64_t* triangles) {
+  std::uint64_t counted = 0;
   Reader reader(bytes);
   std::vector<std::string_view> words;
   const std::optional<std::string_view> magic = reader.next_line();
@@ -239,8 +252,10 @@ std::optional<std::string> ply_structure_problem(std::string_view bytes) {
     // comment, obj_info and unknown lines are ignored, as assimp does.
   }
   if (!encoding) return "corrupt PLY header: no format line";
-  return *encoding == Encoding::Ascii ? check_ascii(reader, elements)
-                                      : check_binary(reader, elements, *encoding);
+  auto problem = *encoding == Encoding::Ascii ? check_ascii(reader, elements, counted)
+                                              : check_binary(reader, elements, *encoding, counted);
+  if (triangles != nullptr) *triangles = counted;
+  return problem;
 }
 
 }  // namespace sutura::engine::detail

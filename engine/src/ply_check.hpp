@@ -6,6 +6,7 @@
 // looping for minutes or make it read past its buffers. This walks the header and every entry
 // of every element, checking each count and list length against the bytes actually present,
 // so assimp only ever sees files whose structure holds together. Values are not interpreted.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,7 +14,9 @@
 namespace sutura::engine::detail {
 
 /// The first structural problem of the PLY file `bytes` in words a user reads, or nullopt.
-/// O(file size).
-std::optional<std::string> ply_structure_problem(std::string_view bytes);
+/// When there is none and `triangles` is given, it receives the triangles the `face`
+/// element's polygons make (k - 2 for a polygon of k corners). O(file size).
+std::optional<std::string> ply_structure_problem(std::string_view bytes,
+                                                 std::uint64_t* triangles = nullptr);
 
 }  // namespace sutura::engine::detail

@@ -419,6 +419,48 @@ TEST(LoadMesh, BinaryStlWithTrailingBytesLoads) {
   EXPECT_EQ(padded.faces(), exact.faces());
 }
 
+// The limit is checked from the file before it is parsed, in every format: a mesh of exactly
+// max_faces triangles loads, one more is refused with the count.
+TEST(LoadMesh, MaxFacesIsCountedBeforeParsingInEveryFormat) {
+  const TempDir dir;
+  const SurfaceMesh tube = test_tube();
+  const std::size_t n = tube.num_faces();
+  std::string ascii = "solid tube\n";
+  for (const auto& f : tube.faces()) {
+    ascii += "  facet normal 0 0 0\n    outer loop\n";
+    for (const auto v : f) {
+      const Vec3& p = tube.position(VertexId(v));
+      ascii += "      vertex " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
+               std::to_string(p.z()) + "\n";
+    }
+    ascii += "    endloop\n  endfacet\n";
+  }
+  write_bytes(dir / "ascii.stl", ascii + "endsolid tube\n");
+  for (const char* name : {"t.obj", "t.ply", "t.stl"}) save_mesh(tube, dir / name);
+  for (const char* name : {"t.obj", "t.ply", "t.stl", "ascii.stl"}) {
+    SCOPED_TRACE(name);
+    ImportOptions options;
+    options.max_faces = n;
+    EXPECT_EQ(load_mesh(dir / name, options).num_faces(), n);
+    options.max_faces = n - 1;
+    expect_load_error(dir / name, Kind::TooLarge,
+                      "holds " + std::to_string(n) + " triangles, more than the limit of " +
+                          std::to_string(n - 1),
+                      options);
+  }
+  // A polygon of k corners counts as the k - 2 triangles it becomes, in OBJ and PLY.
+  write_bytes(dir / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\tf  1 2 3 4 \r\n");
+  write_bytes(dir / "quad.ply",
+              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  for (const char* name : {"quad.obj", "quad.ply"}) {
+    ImportOptions options;
+    options.max_faces = 1;
+    expect_load_error(dir / name, Kind::TooLarge, "holds 2 triangles", options);
+  }
+}
+
 TEST(LoadErrors, PlyHeaderCutShort) {
   // assimp itself would never return on these.
   const TempDir dir;

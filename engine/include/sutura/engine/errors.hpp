@@ -37,6 +37,7 @@ class MeshIoError : public Error {
     Degenerate,         ///< a triangle has (near) zero area or a repeated vertex
     NonManifold,        ///< an edge has more than two faces, a vertex is pinched, or orientation flips
     WriteFailed,        ///< the output could not be written or renamed into place
+    TooLarge,           ///< holds more triangles than ImportOptions::max_faces
   };
   MeshIoError(Kind kind, std::string file, const std::string& problem)
       : Error(file + ": " + problem), kind_(kind), file_(std::move(file)) {}
