@@ -9,19 +9,13 @@ exe=$1 script=$2 out=$3
 rm -rf "$out"
 mkdir -p "$out"
 
-# A display of our own: Xvfb picks a free number and writes it to fd 3 once it accepts
-# connections (safe when several GUI tests start at once).
-Xvfb -displayfd 3 -screen 0 1600x1000x24 -nolisten tcp 3>"$out/display" >"$out/xvfb.log" 2>&1 &
-xvfb_pid=$!
-trap 'kill "$xvfb_pid" 2>/dev/null || true' EXIT
-for _ in $(seq 200); do [ -s "$out/display" ] && break; sleep 0.05; done
-display=$(tr -d '[:space:]' <"$out/display")
-[ -n "$display" ] || { echo "gui test: Xvfb did not start" >&2; cat "$out/xvfb.log" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/xvfb.sh"
+start_xvfb "$out"
 
 # OUT/ and SRC/ in the script stand for the output directory and the script's directory.
 src=$(cd "$(dirname "$script")" && pwd)
 sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
-DISPLAY=":${display}" "$exe" gui --out "$out" --record "$out/recorded.jsonl" \
+"$exe" gui --out "$out" --record "$out/recorded.jsonl" \
   --script "$out/script.jsonl" --width 1400 --height 900
 
 for f in window.png gui_snapshot.png report.json recorded.jsonl; do
