@@ -1,14 +1,19 @@
 #!/usr/bin/env bash
-# Fuzzes the session parser and runner (fuzz_session) and the mesh loader (fuzz_mesh) with
-# libFuzzer under AddressSanitizer and UndefinedBehaviorSanitizer, each for SECONDS (default
-# 300), starting from the corpora ctest replays (tests/fuzz/corpus, tests/robustness, the
+# Fuzzes the session parser and runner (fuzz_session), the mesh loader (fuzz_mesh) and the
+# geometric ops on a tube (fuzz_ops) with libFuzzer under AddressSanitizer and
+# UndefinedBehaviorSanitizer, each for SECONDS (default 300), starting from the corpora ctest replays (tests/fuzz/corpus, tests/robustness, the
 # bundled sessions and meshes). Builds with clang in build-fuzz/ (never while another build
 # runs: 2 cores). Findings (crashes, leaks, sanitizer reports, inputs slower than 30 s) land in
 # build-fuzz/findings/; add each, once fixed, to tests/fuzz/corpus so ctest keeps it fixed.
-# Usage: scripts/fuzz.sh [SECONDS]
+# Usage: scripts/fuzz.sh [SECONDS] [TARGET...]   (targets: session mesh ops; default all)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-300}"
+targets=("${@:2}")
+[ ${#targets[@]} -gt 0 ] || targets=(session mesh ops)
+for t in "${targets[@]}"; do
+  case "$t" in session|mesh|ops) ;; *) echo "fuzz.sh: no target '$t' (session, mesh, ops)" >&2; exit 2 ;; esac
+done
 bash "$root/scripts/install-deps.sh"
 need=(clang libclang-rt-14-dev libomp-dev)
 missing=()
@@ -24,12 +29,13 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
   -DSUTURA_FUZZ=ON -DSUTURA_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build "$build" -j "${SUTURA_JOBS:-$(nproc)}" --target fuzz_session fuzz_mesh
+cmake --build "$build" -j "${SUTURA_JOBS:-$(nproc)}" --target "${targets[@]/#/fuzz_}"
 mkdir -p "$build/findings"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
 export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
-run() {  # target, then seed directories
+run() {  # target, then seed directories; skipped unless asked for
   local target="$1"; shift
+  [[ " ${targets[*]} " == *" $target "* ]] || return 0
   local corpus="$build/corpus/$target"
   mkdir -p "$corpus"
   echo "fuzz: $target for $seconds s" >&2
@@ -45,4 +51,5 @@ for f in "$root"/tests/fuzz/corpus/mesh/* "$root"/assets/anatomy/coarse/*.ply "$
   { printf "$b"; cat "$f"; } > "$seeds/$(basename "$(dirname "$f")")-$(basename "$f")"
 done
 run mesh "$seeds"
+run ops "$root/tests/fuzz/corpus/ops"
 echo "fuzz: done; findings in $build/findings/: $(ls "$build/findings" | wc -l)" >&2
