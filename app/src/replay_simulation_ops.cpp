@@ -281,12 +281,15 @@ json Run::execute(const SimulateOp& op) {
     cancelled = !report_progress("simulate", step, op.params.steps, merged, ds.shell.x);
     return !cancelled;
   };
-  const engine::DynamicsResult r = engine::simulate_dynamics(merged.system(), ds, op.params, hook);
+  engine::DynamicsParams params = op.params;
+  params.keep_going = [this] { return !past_deadline(); };
+  const engine::DynamicsResult r = engine::simulate_dynamics(merged.system(), ds, params, hook);
   merged.state() = ds.shell;
   merged.velocity() = ds.velocity;
   merged.write_back();
-  if (cancelled) throw OpCancelled("cancelled after " + std::to_string(r.steps_done) + " of " +
-                                   std::to_string(op.params.steps) + " steps");
+  if (cancelled || r.stopped)
+    throw OpCancelled("cancelled after " + std::to_string(r.steps_done) + " of " +
+                      std::to_string(op.params.steps) + " steps");
   if (!r.ok) throw std::runtime_error(r.message);
   for (SceneObject* o : objs) commit_pending_loads(*o);
   return {{"model", model->name()}, {"steps", r.steps_done},
@@ -310,6 +313,7 @@ json Run::relax(const SimulateOp& op) {
                              "simulate without relax to settle)");
   engine::RelaxationParams params = *op.relax;
   params.statics.keep_going = [this] { return !past_deadline(); };
+  params.dynamics.keep_going = params.statics.keep_going;
   params.s_start = s_start;
   if (params.s_end < s_start)
     throw std::runtime_error("relax.until " + std::to_string(params.s_end) +

@@ -131,7 +131,11 @@ TEST(Limits, TheUndoHistoryStaysWithinItsMemory) {
 // whole copies would have held 435 tubes (about 260 MB).
 TEST(Limits, TheUndoHistoryHoldsOnlyWhatChanged) {
   std::string s = kHeader;
-  for (int i = 0; i < 30; ++i) s += tube("t" + std::to_string(i), 24, 20);
+  for (int i = 0; i < 30; ++i) {
+    std::string name = "t";  // not "t" + std::to_string(i): GCC 12 warns falsely (-Wrestrict)
+    name += std::to_string(i);
+    s += tube(name, 24, 20);
+  }
   s += "{\"op\": \"material\", \"object\": \"t3\", \"thickness\": 0.5}\n";
   for (int i = 0; i < 31; ++i) s += "{\"op\": \"undo\"}\n";
   for (int i = 0; i < 31; ++i) s += "{\"op\": \"redo\"}\n";

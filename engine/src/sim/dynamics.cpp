@@ -11,6 +11,9 @@ namespace sutura::engine {
 
 namespace {
 
+// A step's failure when DynamicsParams::keep_going said no.
+const std::string kStopped = "stopped by the caller";
+
 void check(const DynamicsParams& p) {
   if (!(p.dt > 0.0)) throw InvalidArgument("dt must be > 0");
   if (p.steps < 1) throw InvalidArgument("steps must be at least 1");
@@ -135,6 +138,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
       return have_factor;
     };
     for (int it = 0;; ++it) {
+      if (params.keep_going && !params.keep_going()) return kStopped;
       Eigen::VectorXd R = residual();
       double rnorm = R.norm();
       if (!std::isfinite(rnorm) || !std::isfinite(ev.internal_energy))
@@ -212,6 +216,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     // (Dynamics.NewtonRetriesAFailedStepFromZeroIncrement) the stiff membrane's reaction to
     // that stretch sent Newton off, in one run even at dt/16, where from zero increment it
     // converged.
+    if (failure == kStopped) return failure;  // rolled back above; no retry, no cut
     // The retry starts on a new step matrix (the failed attempt's was taken on its way off)
     // and keeps the attempt's tolerance: measured against the residual at zero increment,
     // which holds the inertia M v0 / h, it would be looser.
@@ -244,6 +249,7 @@ DynamicsResult simulate_dynamics(const ShellSystem& sys, DynamicsState& state,
     const std::string failure = advance(params.dt, 0);
     if (!failure.empty()) {
       result.ok = false;
+      result.stopped = failure == kStopped;
       std::ostringstream m;
       m << "dynamics step " << step + 1 << " of " << params.steps << " failed";
       if (params.max_step_cuts > 0) m << " (also in sub-steps down to dt/" << (1 << params.max_step_cuts) << ")";

@@ -181,6 +181,31 @@ TEST(Dynamics, HookCanStopTheRun) {
   EXPECT_EQ(calls, 6);
 }
 
+// keep_going is asked before every Newton iteration: a "no" in the middle of a step stops the
+// run at once, without cutting the step, and rolls it back to the last whole step.
+TEST(Dynamics, KeepGoingStopsAStepBetweenNewtonIterations) {
+  Cantilever c(make_corotational_shell(), 0.05, 6, 1);
+  c.sys.loads.nodal[0].force.z() = 1e-3;
+  DynamicsParams p;
+  p.steps = 10;
+  DynamicsState s{c.state, {}};
+  std::vector<Vec3> after_two;
+  int asked = 0, asked_at_step_two = -1;
+  p.keep_going = [&] { return ++asked < asked_at_step_two + 2 || asked_at_step_two < 0; };
+  const DynamicsResult r = simulate_dynamics(c.sys, s, p, [&](int step) {
+    if (step == 2) asked_at_step_two = asked, after_two = s.shell.x;
+    return true;
+  });
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_EQ(r.steps_done, 2);
+  EXPECT_EQ(r.step_cuts, 0);
+  EXPECT_EQ(asked, asked_at_step_two + 2);  // the second iteration of step 3 was not taken
+  EXPECT_NE(r.message.find("stopped by the caller"), std::string::npos) << r.message;
+  ASSERT_EQ(after_two.size(), s.shell.x.size());
+  for (std::size_t i = 0; i < after_two.size(); ++i) EXPECT_EQ(s.shell.x[i], after_two[i]);
+}
+
 TEST(Dynamics, NonFiniteStepIsRolledBack) {
   Cantilever c(make_corotational_shell(), 0.05, 6, 1);
   c.sys.loads.nodal[0].force.z() = std::numeric_limits<double>::infinity();

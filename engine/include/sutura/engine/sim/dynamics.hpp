@@ -78,6 +78,11 @@ struct DynamicsParams {
   /// factorisations for the same 120 steps and the same lumen).
   bool corotated_damping = true;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
+  /// Asked before every Newton iteration; false stops the run at once (no step cut), the
+  /// state rolled back to the last whole step and DynamicsResult::stopped set. Empty: never.
+  /// Bounds a run's overrun of a deadline to one iteration, where the per-step hook could
+  /// overrun it by a whole step with all its cuts (18 s under ASan, docs/reliability.md).
+  std::function<bool()> keep_going;
   PcgParams pcg;
 };
 
@@ -97,6 +102,7 @@ struct DynamicsResult {
   double strain_energy = 0.0;   ///< N*mm at the end
   double residual = 0.0;        ///< static residual |g_int - f_ext| at the end (free DOFs)
   std::string message;          ///< why the run stopped early (state rolled back to the last good step)
+  bool stopped = false;         ///< DynamicsParams::keep_going said no (ok is false)
 };
 
 /// Called before every step with the step index; reports progress, and lets the relaxation
