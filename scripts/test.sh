@@ -1,7 +1,37 @@
 #!/usr/bin/env bash
 # Quick start, command 2: install, build (Release) and run the whole test suite through ctest.
+#   scripts/test.sh              the build in build/ and every test
+#   scripts/test.sh --sanitize   a second build in build-sanitize/ with AddressSanitizer and
+#                                UndefinedBehaviorSanitizer (GCC), and every test but the
+#                                GUI's; any sanitizer report fails its test (docs/reliability.md)
+# CI (.ci/run) runs both.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$root/scripts/build.sh"
-cd "$root/build"
-ctest --output-on-failure -j "${SUTURA_JOBS:-$(nproc)}"
+jobs="${SUTURA_JOBS:-$(nproc)}"
+case "${1:-}" in
+  "")
+    bash "$root/scripts/build.sh"
+    cd "$root/build"
+    ctest --output-on-failure -j "$jobs"
+    ;;
+  --sanitize)
+    bash "$root/scripts/install-deps.sh"
+    build="$root/build-sanitize"
+    flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -g1"
+    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS="$flags" \
+      -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+      -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DSUTURA_BUILD_BENCHMARKS=OFF -DSUTURA_TEST_TIME_SCALE=5 >/dev/null
+    cmake --build "$build" -j "$jobs"
+    # detect_leaks: LeakSanitizer too (the OSMesa driver's context, which it keeps until exit,
+    # is suppressed in tests/fuzz/lsan.supp). halt_on_error: a report ends the test in failure.
+    export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:detect_stack_use_after_return=0"
+    export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+    export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
+    cd "$build"
+    ctest --output-on-failure -j "$jobs" -LE gui
+    ;;
+  *)
+    echo "usage: scripts/test.sh [--sanitize]" >&2
+    exit 2
+    ;;
+esac

@@ -326,6 +326,9 @@ MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>&
   }
   std::vector<ChainResample> chains;
   double finest = HUGE_VAL;
+  // Sizes first: the common points read both per face (found out of bounds by ASan).
+  if (!params.frozen_faces.empty() && params.frozen_faces.size() != mesh.num_faces())
+    throw InvalidArgument("match_seams: frozen_faces needs one entry per face");
   if (!params.rest_edge_lengths.empty() &&
       (params.rest_edge_lengths.size() != mesh.num_faces() || params.frozen_faces.size() != mesh.num_faces()))
     throw InvalidArgument("match_seams: rest_edge_lengths needs one entry per face, and frozen_faces");
