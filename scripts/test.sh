@@ -3,8 +3,9 @@
 #   scripts/test.sh              the build in build/ and every test
 #   scripts/test.sh --sanitize   a second build in build-sanitize/ with AddressSanitizer and
 #                                UndefinedBehaviorSanitizer (GCC), and every test but the
-#                                GUI's; any sanitizer report fails its test (docs/reliability.md)
-# CI (.ci/run) runs both.
+#                                GUI's and two long property tests; any sanitizer report
+#                                fails its test (docs/reliability.md)
+# CI (.ci/run) runs the first (docs/reliability.md: why not yet the second).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="${SUTURA_JOBS:-$(nproc)}"
@@ -28,7 +29,10 @@ case "${1:-}" in
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
     export LSAN_OPTIONS="suppressions=$root/tests/fuzz/lsan.supp"
     cd "$build"
-    ctest --output-on-failure -j "$jobs" -LE gui
+    # Not the two 1,000-curve incision property tests either (Incise.*RandomSmoothCurves*:
+    # 63 and 74 s in Release, over 10 min each under ASan); the fuzz corpus and the robustness
+    # incisions cover the same code.
+    ctest --output-on-failure -j "$jobs" -LE gui -E 'RandomSmoothCurves'
     ;;
   *)
     echo "usage: scripts/test.sh [--sanitize]" >&2
