@@ -56,6 +56,17 @@ Format require_format(const fs::path& file) {
   return *format;
 }
 
+// The triangle count at bytes 80-83 of an STL file of at least 84 bytes (0 when they cannot
+// be read). A binary STL's when 84 + 50 n bytes fit in the file; in an ASCII one it is text.
+std::uint32_t stl_count_field(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char header[84];
+  std::uint32_t n = 0;
+  static_assert(std::endian::native == std::endian::little, "STL counts are little-endian");
+  if (in.read(header, 84)) std::memcpy(&n, header + 80, 4);
+  return n;
+}
+
 // Triangles a text file's lines give: `facet` lines (ASCII STL) or `f` lines with k corners,
 // k - 2 each (OBJ). Streams the file in 1 MiB blocks; a line is judged by its first two
 // tokens only, so a long line costs no memory.
@@ -114,10 +125,7 @@ std::uintmax_t count_triangles(const fs::path& file, Format format, std::uintmax
                                std::uint64_t ply_triangles) {
   if (format == Format::Ply) return ply_triangles;
   if (format == Format::Stl && size >= 84) {
-    std::ifstream in(file, std::ios::binary);
-    char header[84];
-    std::uint32_t n = 0;
-    if (in.read(header, 84)) std::memcpy(&n, header + 80, 4);
+    const std::uint32_t n = stl_count_field(file);
     if (n > 0 && 84 + 50 * std::uintmax_t(n) <= size) return n;  // binary, as load_mesh reads it
   }
   return count_text_triangles(file, format);
@@ -502,19 +510,13 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
   // An ASCII file's "count" (text at bytes 80-83) asks for far more bytes than it has.
   std::string stl_body;
   if (format == Format::Stl && size >= 84) {
-    std::ifstream in(file, std::ios::binary);
-    char header[84];
-    if (in.read(header, 84)) {
-      std::uint32_t n = 0;
-      static_assert(std::endian::native == std::endian::little, "STL counts are little-endian");
-      std::memcpy(&n, header + 80, 4);
-      const std::uintmax_t expected = 84 + 50 * std::uintmax_t(n);
-      if (n > 0 && expected < size) {
-        stl_body.assign(header, 84);
-        stl_body.resize(std::size_t(expected));
-        if (!in.read(stl_body.data() + 84, std::streamsize(expected - 84)))
-          fail(Kind::Unreadable, file, "cannot read its triangles");
-      }
+    const std::uint32_t n = stl_count_field(file);
+    const std::uintmax_t expected = 84 + 50 * std::uintmax_t(n);
+    if (n > 0 && expected < size) {
+      std::ifstream in(file, std::ios::binary);
+      stl_body.resize(std::size_t(expected));
+      if (!in.read(stl_body.data(), std::streamsize(expected)))
+        fail(Kind::Unreadable, file, "cannot read its triangles");
     }
   }
 

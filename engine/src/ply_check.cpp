@@ -126,19 +126,22 @@ std::string entry_name(const Element& e, std::uint64_t i) {
   return e.name + " entry " + std::to_string(i) + " of " + std::to_string(e.count);
 }
 
-// The triangles a polygon of `corners` corners becomes, counted for the first list of a
-// `face` element (as assimp triangulates it).
-void count_polygon(const Element& e, const Property& p, std::uint64_t corners,
-                   std::uint64_t& triangles) {
-  if (e.name == "face" && &p == &*std::find_if(e.properties.begin(), e.properties.end(),
-                                               [](const Property& q) { return q.list; }))
-    triangles += corners >= 3 ? corners - 2 : 0;
+// The property whose lists are polygons, counted as the k - 2 triangles assimp makes of k
+// corners: the first list of a `face` element; nullptr for other elements.
+const Property* polygon_list(const Element& e) {
+  if (e.name != "face") return nullptr;
+  const auto it = std::find_if(e.properties.begin(), e.properties.end(),
+                               [](const Property& q) { return q.list; });
+  return it == e.properties.end() ? nullptr : &*it;
 }
+
+std::uint64_t polygon_triangles(std::uint64_t corners) { return corners >= 3 ? corners - 2 : 0; }
 
 std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element>& elements,
                                        std::uint64_t& triangles) {
   std::vector<std::string_view> words;
   for (const Element& e : elements) {
+    const Property* polygons = polygon_list(e);
     for (std::uint64_t i = 0; i < e.count; ++i) {
       const std::optional<std::string_view> line = reader.next_line();
       if (!line) return "the data ends before " + entry_name(e, i);
@@ -157,7 +160,7 @@ std::optional<std::string> check_ascii(Reader& reader, const std::vector<Element
           return entry_name(e, i) + " announces a list of " + std::to_string(*length) +
                  " values but holds fewer";
         }
-        count_polygon(e, p, *length, triangles);
+        if (&p == polygons) triangles += polygon_triangles(*length);
         w += *length;
       }
     }
@@ -169,6 +172,7 @@ std::optional<std::string> check_binary(Reader& reader, const std::vector<Elemen
                                         Encoding encoding, std::uint64_t& triangles) {
   for (const Element& e : elements) {
     if (e.properties.empty()) continue;
+    const Property* polygons = polygon_list(e);
     for (std::uint64_t i = 0; i < e.count; ++i) {
       for (const Property& p : e.properties) {
         std::uint64_t values = 1;
@@ -177,7 +181,7 @@ std::optional<std::string> check_binary(Reader& reader, const std::vector<Elemen
               reader.read_length(p.length_size, p.length_signed, encoding);
           if (!length) return "the data ends in or has a bad list length in " + entry_name(e, i);
           values = *length;
-          count_polygon(e, p, values, triangles);
+          if (&p == polygons) triangles += polygon_triangles(values);
         }
         if (values > reader.remaining() / p.size || !reader.skip(values * p.size)) {
           return "the data ends in " + entry_name(e, i);

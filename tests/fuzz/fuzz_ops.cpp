@@ -41,12 +41,17 @@ class Bytes {
 
 constexpr double kRadius = 4.0, kLength = 30.0;
 
-std::string point(Bytes& b) {
-  const double theta = b.in(0.0, 2.0 * M_PI), z = b.in(-1.0, kLength + 1.0);
+// The tube's surface point at angle theta and height z, as a JSON array.
+std::string surface_point(double theta, double z) {
   std::ostringstream os;
   os.precision(6);
   os << '[' << kRadius * std::cos(theta) << ", " << kRadius * std::sin(theta) << ", " << z << ']';
   return os.str();
+}
+
+std::string point(Bytes& b) {
+  const double theta = b.in(0.0, 2.0 * M_PI);
+  return surface_point(theta, b.in(-1.0, kLength + 1.0));
 }
 
 std::string ops_session(Bytes& b) {
@@ -69,11 +74,8 @@ std::string ops_session(Bytes& b) {
           if (scattered) {
             p = point(b);
           } else {
-            const double theta = theta0 + i * dtheta + b.in(-0.02, 0.02), z = z0 + i * dz / (n - 1) * 4;
-            std::ostringstream q;
-            q.precision(6);
-            q << '[' << kRadius * std::cos(theta) << ", " << kRadius * std::sin(theta) << ", " << z << ']';
-            p = q.str();
+            const double theta = theta0 + i * dtheta + b.in(-0.02, 0.02);
+            p = surface_point(theta, z0 + i * dz / (n - 1) * 4);
           }
           if (i == 0) last_start = p;
           if (i == n - 1) last_end = p;

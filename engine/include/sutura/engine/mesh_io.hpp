@@ -14,8 +14,8 @@ struct ImportOptions {
   double weld_tolerance = 1e-6;
   /// The most triangles the file may hold; 0 for no limit. Counted before the file is parsed
   /// (the count of a binary STL, the face element of a PLY header, facets of an ASCII STL
-  /// and the triangles of an OBJ's polygons, one pass over the bytes at about 1 GB/s), so a
-  /// file far above the limit is refused in O(size) time and O(1) memory.
+  /// and the triangles of an OBJ's polygons in one streamed pass over the bytes), so a file
+  /// far above the limit is refused in O(size) time and O(1) memory.
   std::size_t max_faces = 0;
 };
 

@@ -80,8 +80,8 @@ struct DynamicsParams {
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   /// Asked before every Newton iteration; false stops the run at once (no step cut), the
   /// state rolled back to the last whole step and DynamicsResult::stopped set. Empty: never.
-  /// Bounds a run's overrun of a deadline to one iteration, where the per-step hook could
-  /// overrun it by a whole step with all its cuts (18 s under ASan, docs/reliability.md).
+  /// Bounds a run's overrun of a deadline to one Newton iteration (the per-step hook alone
+  /// would let a whole step with all its cuts run past it).
   std::function<bool()> keep_going;
   PcgParams pcg;
 };
