@@ -348,7 +348,7 @@ json Run::relax(const SimulateOp& op) {
       o->sim.relax_s = r.s_reached;
     }
   }
-  if (cancelled) throw OpCancelled("relaxation cancelled at s = " + std::to_string(r.s_reached));
+  if (r.cancelled) throw OpCancelled("relaxation cancelled at s = " + std::to_string(r.s_reached));
   if (!r.ok) throw std::runtime_error(r.message);
   for (SceneObject* o : objs) commit_pending_loads(*o);
   json history = json::array();

@@ -12,6 +12,9 @@ namespace sutura::engine {
 
 namespace {
 
+// A load step's failure when StaticSolverParams::keep_going said no.
+const std::string kStopped = "stopped by the caller";
+
 void check(const StaticSolverParams& p) {
   if (!std::isfinite(p.lambda_start) || !std::isfinite(p.lambda_end))
     throw InvalidArgument("load factors must be finite");
@@ -134,7 +137,7 @@ std::string newton(const ShellSystem& sys, const DofMap& map, ShellState& state,
         !failed.empty())
       return failed;
     if (rnorm <= std::max(params.tolerance * ref, roundoff)) return {};
-    if (params.keep_going && !params.keep_going()) return "stopped by the caller";
+    if (params.keep_going && !params.keep_going()) return kStopped;
     if (it == params.max_iterations) {
       std::ostringstream m;
       m << "no convergence in " << params.max_iterations << " Newton iterations (residual "
@@ -312,7 +315,7 @@ std::string minimize(const ShellSystem& sys, const DofMap& map, ShellState& stat
       ws.keep_factor(n);
       return {};
     }
-    if (params.keep_going && !params.keep_going()) return "stopped by the caller";
+    if (params.keep_going && !params.keep_going()) return kStopped;
     if ((need_tangent && newton_steps == params.max_iterations) ||
         it == params.max_iterations * (qn_steps + 1)) {
       std::ostringstream m;
@@ -542,7 +545,8 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
       continue;
     }
     state = good;  // roll back to the last converged load step
-    if (cuts == params.max_step_cuts) {
+    result.stopped = why == kStopped;
+    if (result.stopped || cuts == params.max_step_cuts) {
       std::ostringstream m;
       m << "static solve failed at load factor " << lambda << ": " << why
         << "; rolled back to the last converged load factor " << lambda_at(t_done);

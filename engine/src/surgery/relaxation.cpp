@@ -133,6 +133,7 @@ bool settle_static(const ShellSystem& sys, ShellState& state, const RelaxationPa
   result.residual = r.residual;
   result.energy = r.energy;
   if (!r.converged) result.message = "settling to equilibrium failed: " + r.message;
+  result.cancelled = r.stopped;
   return r.converged;
 }
 
@@ -271,6 +272,10 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
     if (!r.converged) {
       state = good;
       rest = rest_at(y0, x0, s);
+      if (r.stopped) {  // the caller's keep_going: no escape, no halving, no retry
+        result.cancelled = true;
+        return result;
+      }
       // An increment that started from an unstable equilibrium (a symmetric shape held on an
       // unstable branch: the Levenberg-Marquardt iteration converges only linearly onto the
       // saddle it stays on, measured: 3e-9 short of 1e-8 after 30 iterations on a flat
@@ -381,6 +386,10 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
   result.s_reached =
       p.s_start + (p.s_end - p.s_start) * std::min(1.0, double(good_steps) / p.steps);
   rest = rest_at(y0, x0, result.s_reached);
+  if (r.stopped) {
+    result.cancelled = true;
+    return result;
+  }
   if (!r.ok) {
     result.message = "relaxation " + r.message;
     return result;
@@ -404,6 +413,10 @@ void escape_instability(const ShellSystem& sys, const RestState& rest, ShellStat
   const double reach = 0.2 * mean_rest_edge(rest);
   while (result.stability && result.stability->negative_modes > 0 &&
          result.escapes < params.max_escapes) {
+    if (params.statics.keep_going && !params.statics.keep_going()) {
+      result.cancelled = true;
+      return;
+    }
     const std::optional<UnstableMode> mode = unstable_mode(sys, state, 1.0, 30, &workspace);
     if (!mode) return;
     const ShellState settled = state;
@@ -454,6 +467,10 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
     if (!settle_static(sys, state, params, scales, result, workspace)) {
       state = good;
       result.ok = false;
+      return result;
+    }
+    if (params.check_stability && params.statics.keep_going && !params.statics.keep_going()) {
+      result.cancelled = true;  // before the stability check, an eigen-solve
       return result;
     }
     const int settle_iterations = result.newton_iterations - iterations_before_settle;

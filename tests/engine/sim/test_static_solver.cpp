@@ -49,6 +49,37 @@ TEST(StaticSolver, NewtonConvergesQuadraticallyWithLoadSteps) {
   EXPECT_GT(c.tip_displacement().z(), 5.0);
 }
 
+// keep_going is asked before every iteration; its first "no" ends the solve at once: no step
+// cut, no retry (each would ask again), the state rolled back to the last converged load step.
+TEST(StaticSolver, KeepGoingStopsTheSolveWithoutCutsOrRetries) {
+  for (const bool minimise : {false, true}) {
+    SCOPED_TRACE(minimise ? "energy minimisation" : "Newton");
+    Cantilever reference(make_corotational_shell(), 4.0), c(make_corotational_shell(), 4.0);
+    StaticSolverParams p;
+    p.load_steps = 4;
+    p.shift_indefinite = minimise;
+    StaticSolverParams first_step = p;
+    first_step.lambda_end = 0.25;
+    first_step.load_steps = 1;
+    ASSERT_TRUE(solve_static(reference.sys, reference.state, first_step).converged);
+    // The "no" comes in the second load step, after its first iteration.
+    int asked = 0, asked_in_first_step = -1;
+    p.keep_going = [&] { return ++asked != asked_in_first_step + 2; };
+    StaticSolverParams probe = first_step;
+    probe.keep_going = [&] { ++asked_in_first_step; return true; };
+    Cantilever counter(make_corotational_shell(), 4.0);
+    ASSERT_TRUE(solve_static(counter.sys, counter.state, probe).converged);
+    const StaticResult r = solve_static(c.sys, c.state, p);
+    EXPECT_FALSE(r.converged);
+    EXPECT_TRUE(r.stopped);
+    EXPECT_EQ(asked, asked_in_first_step + 2);  // never asked again after the "no"
+    EXPECT_DOUBLE_EQ(r.lambda_reached, 0.25);
+    EXPECT_NE(r.message.find("stopped by the caller"), std::string::npos) << r.message;
+    ASSERT_EQ(c.state.x.size(), reference.state.x.size());
+    for (std::size_t i = 0; i < c.state.x.size(); ++i) EXPECT_EQ(c.state.x[i], reference.state.x[i]);
+  }
+}
+
 TEST(StaticSolver, ContinuesFromAnIntermediateLoadFactor) {
   Cantilever a(make_corotational_shell(), 2.0), b(make_corotational_shell(), 2.0);
   StaticSolverParams p;

@@ -150,6 +150,33 @@ TEST(Relaxation, PartialRelaxationStopsAtTheRequestedS) {
   EXPECT_LT(r.energy, 0.5 * 1.0 * 0.2 * 80.0 * 0.105 * 0.105);
 }
 
+// A "no" from keep_going (a time limit) cancels the relaxation at once, with the state of
+// the last converged increment: the failed solve is not escaped from, halved or retried, each
+// of which would cost a factorisation or an eigen-solve past the caller's deadline.
+TEST(Relaxation, KeepGoingCancelsWithoutEscapeOrRetry) {
+  for (const RelaxationSolver solver : {RelaxationSolver::Static, RelaxationSolver::Dynamic}) {
+    SCOPED_TRACE(solver == RelaxationSolver::Static ? "static" : "dynamic");
+    auto model = make_discrete_shell();
+    Body body = joined_strips(2.0);
+    RelaxationParams p;
+    p.solver = solver;
+    p.steps = 4;
+    p.check_stability = true;
+    int asked = 0;
+    const auto keep_going = [&] { return ++asked < 4; };
+    p.statics.keep_going = keep_going;
+    p.dynamics.keep_going = keep_going;
+    const RelaxationResult r = relax_body(body, *model, testing::soft_material(0.0), {}, p,
+                                          std::vector<bool>(body.mesh.num_faces(), true));
+    EXPECT_TRUE(r.cancelled);
+    EXPECT_FALSE(r.ok);
+    EXPECT_EQ(asked, 4);  // never asked again after the "no"
+    EXPECT_EQ(r.escapes, 0);
+    EXPECT_LT(r.s_reached, 1.0);
+    for (const RelaxationProgress& h : r.history) EXPECT_NE(h.phase, "retry");
+  }
+}
+
 TEST(Relaxation, SlitOpenedUnderPressureAndReJoinedReturnsToTheIntactShape) {
   auto model = make_corotational_shell();
   ShellMaterial mat = testing::soft_material(0.3);

@@ -74,9 +74,9 @@ struct StaticSolverParams {
   /// the start state (without follower load stiffness), no iteration: the small-displacement
   /// answer of the linear benchmarks.
   bool linear = false;
-  /// Asked before every iteration (empty: never); false ends the load step as failed ("stopped
-  /// by the caller"), the state rolled back as for any failure: a time limit inside a long
-  /// solve.
+  /// Asked before every iteration (empty: never); false ends the solve at once, without a
+  /// step cut or a retry: the state rolled back to the last converged load step and
+  /// StaticResult::stopped set. A time limit inside a long solve.
   std::function<bool()> keep_going;
 };
 
@@ -110,6 +110,7 @@ struct StaticResult {
   double energy = 0.0;
   std::vector<NewtonIteration> history;
   std::string message;  ///< empty on success; otherwise what went wrong and what was rolled back
+  bool stopped = false;  ///< StaticSolverParams::keep_going said no (converged is false)
 };
 
 /// What consecutive solves of systems with the same structure can share: the tangent

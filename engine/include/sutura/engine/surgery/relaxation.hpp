@@ -95,6 +95,8 @@ using RelaxationHook = std::function<bool(const RelaxationProgress&)>;
 
 struct RelaxationResult {
   bool ok = false;
+  /// The hook returned false, or statics.keep_going / dynamics.keep_going did (asked before
+  /// every Newton iteration, escape and stability check): the state is the last converged one.
   bool cancelled = false;
   double s_reached = 0.0;
   int newton_iterations = 0;
