@@ -425,8 +425,10 @@ void escape_instability(const ShellSystem& sys, const RestState& rest, ShellStat
     const int quasi_before = result.quasi_newton_iterations;
     if (!perturb_downhill(sys, state, *mode, reach, params.statics.min_area_ratio) ||
         !settle_static(sys, state, params, scales, result, workspace)) {
+      const bool stopped = result.cancelled;  // settle_static's solve said so
       state = settled;
       result = before;
+      result.cancelled = stopped;
       return;
     }
     if (result.escapes++ == 0) result.stability_before_escapes = result.stability;
@@ -469,16 +471,17 @@ RelaxationResult relax(const ShellSystem& sys, RestState& rest, const RestState&
       result.ok = false;
       return result;
     }
-    if (params.check_stability && params.statics.keep_going && !params.statics.keep_going()) {
-      result.cancelled = true;  // before the stability check, an eigen-solve
-      return result;
-    }
     const int settle_iterations = result.newton_iterations - iterations_before_settle;
     RelaxationProgress pr{1.0, int(result.history.size()) + 1, int(result.history.size()) + 1,
                           result.residual, result.energy, "settle", settle_iterations,
                           result.quasi_newton_iterations - quasi_before_settle};
     result.history.push_back(pr);
-    if (hook) hook(pr);
+    // Asked before the stability check, an eigen-solve.
+    if ((hook && !hook(pr)) || (params.check_stability && params.statics.keep_going &&
+                                !params.statics.keep_going())) {
+      result.cancelled = true;
+      return result;
+    }
     if (params.check_stability) {
       result.stability = check_stability(sys, state, {}, &workspace);
       escape_instability(sys, rest, state, params, scales, result, workspace, hook);
