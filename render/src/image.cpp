@@ -104,9 +104,20 @@ std::vector<std::uint8_t> encode_png(const Image& image) {
                                 std::to_string(image.height) + " is empty or inconsistent");
   }
   configure_png_writer();
+  // An opaque image (every render) is written as RGB: a quarter fewer bytes for stb's
+  // single-threaded compressor, the largest cost of a big snapshot.
+  bool opaque = true;
+  for (std::size_t i = 3; i < image.rgba.size() && opaque; i += 4) opaque = image.rgba[i] == 255;
+  std::vector<std::uint8_t> rgb;
+  if (opaque) {
+    rgb.resize(image.rgba.size() / 4 * 3);
+    for (std::size_t p = 0, q = 0; p < image.rgba.size(); p += 4, q += 3)
+      std::memcpy(&rgb[q], &image.rgba[p], 3);
+  }
+  const int channels = opaque ? 3 : 4;
   std::vector<std::uint8_t> png;
-  if (stbi_write_png_to_func(append_bytes, &png, image.width, image.height, 4, image.rgba.data(),
-                             4 * image.width) == 0) {
+  if (stbi_write_png_to_func(append_bytes, &png, image.width, image.height, channels,
+                             opaque ? rgb.data() : image.rgba.data(), channels * image.width) == 0) {
     throw std::runtime_error("encode_png: PNG encoding failed");
   }
   return png;

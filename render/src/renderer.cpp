@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -343,7 +344,7 @@ struct Renderer::Impl {
     image.height = height;
     image.rgba.resize(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
     try {
-      const int samples = std::clamp(options.samples, 1, std::max(max_samples, 1));
+      const int samples = render_samples(options.samples, width, height, max_samples);
       target.ensure(width, height, samples);
       gl.BindFramebuffer(GL_FRAMEBUFFER, target.draw_framebuffer());
       draw_scene(scene, camera, width, height, samples > 1, options);
@@ -401,6 +402,17 @@ struct Renderer::Impl {
     gl.Disable(GL_SCISSOR_TEST);
   }
 };
+
+// llvmpipe keeps every sample of a multisampled framebuffer in memory (colour and depth, 8
+// bytes each) and clears them all: 4 samples of 8192 x 8192 pixels are 2.1 GB to touch and
+// clear per render. The budget gives full anti-aliasing up to 4096 x 4096, where it is
+// visible, and none at 8192 x 8192, where a pixel is too small for the edges to need it.
+int render_samples(int requested, int width, int height, int max_samples) {
+  constexpr std::int64_t kSampleBudget = 4LL * 4096 * 4096;
+  const std::int64_t pixels = std::max<std::int64_t>(1, std::int64_t(width) * height);
+  const int within_budget = int(std::min<std::int64_t>(kSampleBudget / pixels, 64));
+  return std::clamp(std::min(requested, within_budget), 1, std::max(max_samples, 1));
+}
 
 Image Renderer::read_framebuffer(int width, int height) {
   return impl_->read_bound(width, height);

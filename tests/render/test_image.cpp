@@ -50,6 +50,23 @@ TEST(RenderImage, PngRoundTripPreservesEveryPixel) {
   EXPECT_EQ(decoded.rgba, original.rgba);
 }
 
+// Renders are opaque: their PNG is RGB (colour type 2, byte 25), and decodes to the same
+// pixels with alpha 255; an image with any other alpha stays RGBA (type 6).
+TEST(RenderImage, OpaqueImagesAreWrittenAsRgb) {
+  Image opaque = gradient_image(37, 23);
+  for (std::size_t i = 3; i < opaque.rgba.size(); i += 4) opaque.rgba[i] = 255;
+  const std::vector<std::uint8_t> png = encode_png(opaque);
+  ASSERT_GT(png.size(), 26u);
+  EXPECT_EQ(png[25], 2);
+  EXPECT_EQ(decode_png(png).rgba, opaque.rgba);
+  Image one_translucent = opaque;
+  one_translucent.rgba.back() = 254;
+  const std::vector<std::uint8_t> rgba_png = encode_png(one_translucent);
+  ASSERT_GT(rgba_png.size(), 26u);
+  EXPECT_EQ(rgba_png[25], 6);
+  EXPECT_EQ(decode_png(rgba_png).rgba, one_translucent.rgba);
+}
+
 TEST(RenderImage, PngErrors) {
   EXPECT_THROW(decode_png({}), std::runtime_error);
   EXPECT_THROW(decode_png({1, 2, 3, 4, 5, 6, 7, 8, 9}), std::runtime_error);

@@ -127,6 +127,21 @@ class RenderSnapshot : public ::testing::Test {
 std::unique_ptr<GlContext> RenderSnapshot::context_;
 std::unique_ptr<Renderer> RenderSnapshot::renderer_;
 
+// Anti-aliasing within a memory budget: every sample costs llvmpipe 8 bytes, cleared per
+// render, so a large render gets fewer samples (an 8192 x 8192 one: none).
+TEST(RenderSamples, FullAntiAliasingUpTo4096SquaredThenFewerSamples) {
+  EXPECT_EQ(render_samples(4, 1920, 1080, 4), 4);
+  EXPECT_EQ(render_samples(4, 4096, 4096, 4), 4);
+  EXPECT_EQ(render_samples(4, 4096, 4097, 4), 3);
+  EXPECT_EQ(render_samples(4, 5792, 5792, 4), 2);
+  EXPECT_EQ(render_samples(4, 8192, 4096, 4), 2);
+  EXPECT_EQ(render_samples(4, 8192, 8192, 4), 1);
+  EXPECT_EQ(render_samples(8, 640, 480, 4), 4);  // the GL limit
+  EXPECT_EQ(render_samples(4, 640, 480, 0), 1);  // no multisampling at all
+  EXPECT_EQ(render_samples(0, 640, 480, 4), 1);
+  EXPECT_EQ(render_samples(1, 1, 1, 4), 1);
+}
+
 TEST_F(RenderSnapshot, SphereFillsTheCentreOnTheBackground) {
   const TestMesh sphere = uv_sphere(1.0f, 32, 64);
   Scene scene;

@@ -24,9 +24,10 @@ struct Image {
 };
 
 /// PNG file content of `image` (no file is written; callers write it atomically).
-/// Throws std::invalid_argument for an empty or inconsistent image. Uses stb_image_write
-/// with the Sub row filter at compression level 5 (set once, process-wide, in stb's
-/// globals). Cost: about 0.1 s for a 1920x1080 render, as much as rendering it.
+/// Throws std::invalid_argument for an empty or inconsistent image. An image whose alpha is
+/// 255 everywhere is written as RGB (colour type 2), any other as RGBA (type 6). Uses
+/// stb_image_write with the Sub row filter at compression level 5 (set once, process-wide,
+/// in stb's globals). Cost: about 0.1 s for a 1920x1080 render, as much as rendering it.
 std::vector<std::uint8_t> encode_png(const Image& image);
 /// Decodes PNG bytes (tests and tools); throws std::runtime_error on malformed data.
 Image decode_png(const std::vector<std::uint8_t>& bytes);

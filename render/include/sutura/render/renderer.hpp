@@ -24,6 +24,12 @@ struct RenderOptions {
   int viewport_y = 0;
 };
 
+/// The MSAA samples render() uses: `requested`, clamped to [1, max_samples] (GL_MAX_SAMPLES;
+/// 4 on llvmpipe) and to at most 4 x 4096 x 4096 samples in all, so 4 up to 4096 x 4096
+/// pixels, 2 up to 5792 x 5792 and 1 at 8192 x 8192 (each sample costs 8 bytes of memory that
+/// is cleared per render).
+int render_samples(int requested, int width, int height, int max_samples);
+
 class Renderer {
  public:
   /// Makes `context` current and compiles shaders; the context must outlive the renderer.
@@ -33,7 +39,7 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   /// Makes the context current, renders into an off-screen framebuffer with
-  /// options.samples samples (clamped to [1, GL_MAX_SAMPLES]; 4 on llvmpipe), resolves it
+  /// render_samples(options.samples, ...) samples, resolves it
   /// and reads it back (top row first, alpha 255). The framebuffer bindings found on entry
   /// are restored. Same scene, camera, size and options give the same bytes on one build.
   /// Throws GlError on GL failure or a size outside [1, 8192] (the message names the size),
