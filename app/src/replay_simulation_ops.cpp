@@ -327,13 +327,11 @@ json Run::relax(const SimulateOp& op) {
   const engine::RestState y0 = merged.relax_from();
   const engine::RestState x0 = merged.rest();
   merged.rest() = engine::rest_at(y0, x0, s_start);
-  bool cancelled = false;
+  // A false from report_progress cancels the relaxation (RelaxationResult::cancelled).
   const engine::RelaxationHook hook = [&](const engine::RelaxationProgress& p) {
-    cancelled =
-        !report_progress(p.phase, p.step, p.steps, merged, merged.state().x, p.s, p.residual,
-                         params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1,
-                         p.quasi_newton_iterations);
-    return !cancelled;
+    return report_progress(p.phase, p.step, p.steps, merged, merged.state().x, p.s, p.residual,
+                           params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1,
+                           p.quasi_newton_iterations);
   };
   const engine::RelaxationResult r =
       engine::relax(merged.system(), merged.rest(), y0, x0, merged.state(), params, hook);
