@@ -14,16 +14,7 @@ targets=("${@:2}")
 for t in "${targets[@]}"; do
   case "$t" in session|mesh|ops) ;; *) echo "fuzz.sh: no target '$t' (session, mesh, ops)" >&2; exit 2 ;; esac
 done
-bash "$root/scripts/install-deps.sh"
-need=(clang libclang-rt-14-dev libomp-dev)
-missing=()
-for p in "${need[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo_cmd=""; [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq && $sudo_cmd apt-get install -y -qq "${missing[@]}"
-fi
+bash "$root/scripts/install-deps.sh" --clang
 build="$root/build-fuzz"
 flags="-fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \

@@ -1,5 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Sutura needs to build, test and run.
+#   install-deps.sh           what the ordinary build, tests and GUI need
+#   install-deps.sh --clang   those and clang 14 with its sanitizer and libFuzzer runtimes
+#                             (libclang-rt-14-dev) and OpenMP (libomp-dev): the sanitized suite
+#                             (scripts/test.sh --sanitize) and the fuzzers (scripts/fuzz.sh)
 # Idempotent: when every package is already present it does nothing (no apt-get update).
 set -euo pipefail
 
@@ -18,6 +22,11 @@ PACKAGES=(
   libbenchmark-dev
   xvfb xauth xdotool x11-utils
 )
+case "${1:-}" in
+  "") ;;
+  --clang) PACKAGES+=(clang libclang-rt-14-dev libomp-dev) ;;
+  *) echo "usage: install-deps.sh [--clang]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do
