@@ -82,8 +82,9 @@ void check_limits(const Session& session, const Limits& limits) {
 }
 
 std::size_t object_bytes(const SceneObject& o) {
-  // Per vertex: the mesh, pre-operative and reference positions, the state (position and a
-  // triad), velocity, constraints and loads: about 30 doubles. Per face: indices in the mesh
+  // Per vertex: the mesh, pre-operative and reference positions (and measures, after an
+  // unload), the state (position and a triad), velocity, constraints and loads: about 30
+  // doubles. Per face: indices in the mesh
   // and the pre-operative mesh, the rest element (3 points and its derived data), material:
   // about 40 doubles. Halfedge connectivity: 3 per face, twins and vertex links.
   return 240 * (o.mesh.num_vertices() + o.before.num_vertices()) +

@@ -85,6 +85,7 @@ struct Run {
   json execute(const PressureOp& op);
   json execute(const BodyForceOp& op);
   json execute(const SolveOp& op);
+  json execute(const UnloadOp& op);
   json execute(const SimulateOp& op);
   /// Passes a long op's progress (step of steps, current merged positions `x`, and for a
   /// relaxation its s, residual and Newton iterations) to options.on_progress; false when the caller asks to cancel.

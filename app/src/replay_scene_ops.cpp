@@ -121,6 +121,10 @@ json Run::execute(const GenerateOp& op) {
     SceneObject& obj = edit(op.object);
     engine::append_component(obj.mesh, obj.sim, mesh, mesh, obj.sim.materials.front());
     obj.before = obj.mesh;  // the new part is part of the pre-operative scene
+    // ... and stress-free there (an unloaded object's measures go on for the old part).
+    for (auto* v : {&obj.before_measures.membrane_strain, &obj.before_measures.bending_curvature,
+                    &obj.before_measures.energy_density})
+      if (!v->empty()) v->resize(obj.before.num_vertices(), 0.0);
     return {{"object", op.object}, {"appended", true}, {"vertices", obj.mesh.num_vertices()},
             {"faces", obj.mesh.num_faces()}};
   }

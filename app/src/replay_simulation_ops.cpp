@@ -9,6 +9,8 @@
 #include "sutura/engine/sim/rigid_modes.hpp"
 #include "sutura/engine/sim/selection.hpp"
 #include "sutura/engine/sim/stability.hpp"
+#include "sutura/engine/sim/unload.hpp"
+#include "sutura/engine/measure/vertex_fields.hpp"
 
 namespace sutura::app::detail {
 
@@ -263,6 +265,84 @@ json Run::execute(const SolveOp& op) {
         engine::check_stability(merged.system(), merged.state(), sp, &workspace);
     out["equilibrium"] = stability_json(st);
     if (const std::string w = stability_warning(st, "solved shape"); !w.empty()) out["warning"] = w;
+  }
+  return out;
+}
+
+json Run::execute(const UnloadOp& op) {
+  remember();
+  SceneObject& obj = edit(op.object);
+  // The rest becomes one vertex field (engine/sim/unload.hpp): a suture's 1:n rest mapping
+  // or a relaxation under way would be lost.
+  if (!obj.sim.marks.incisions.empty() || !obj.sim.marks.sutures.empty() || obj.sim.relax_from)
+    throw std::runtime_error("'" + op.object +
+                             "' has been incised or sutured; unload finds the unloaded shape of "
+                             "the vessel as imaged, so unload it before the first edit");
+  if (obj.sim.applied_loads.empty() && obj.sim.pending_loads.empty())
+    throw std::runtime_error("'" + op.object +
+                             "' has no loads to unload: set the loads it was imaged under first "
+                             "(e.g. op pressure, 0.0107 MPa for 80 mmHg)");
+  std::vector<SceneObject*> objs{&obj};
+  require_restrained(objs, "unload");
+  const auto model = make_model(op.solve.model);
+  const engine::AreaBarrierParams barrier;
+  MergedSystem merged(objs, *model, nullptr, op.solve.collapse_barrier ? &barrier : nullptr);
+  if (op.solve.minimize) require_conservative_pressure(merged);
+  engine::UnloadParams params;
+  params.max_iterations = op.iterations;
+  params.tolerance = op.shape_tolerance;
+  params.solver = op.solve.params;
+  params.solver.keep_going = [this] { return !past_deadline(); };
+  const std::vector<engine::Vec3> imaged = merged.state().x;
+  engine::SolverWorkspace workspace;
+  const engine::UnloadResult r = engine::unload(merged.system(), imaged, params, &workspace);
+  json history = json::array();
+  for (std::size_t k = 0; k < r.history.size(); ++k) {
+    const engine::UnloadIteration& h = r.history[k];
+    json e = {{"iteration", k + 1}, {"solved", h.solved}, {"step", h.step},
+              {"accelerated", h.accelerated},
+              {"solver_iterations", h.solver_iterations}};
+    if (h.solved) {
+      e["max_deviation_mm"] = h.max_deviation;
+      e["rms_deviation_mm"] = h.rms_deviation;
+    }
+    history.push_back(e);
+  }
+  if (r.stopped) throw OpCancelled(r.message);
+  if (!r.converged) throw std::runtime_error(r.message);
+  // The imaged shape stays the pre-operative one ("before" of measurements, the reference of
+  // displacements); the object is now in equilibrium under its loads there.
+  merged.state() = r.state;
+  merged.velocity().setZero();
+  merged.rest() = r.rest;
+  merged.write_back();
+  obj.sim.rest = r.rest;
+  obj.sim.reference = imaged;
+  // (The mesh now, not as loaded: a remesh may have come between.)
+  obj.before = obj.mesh;
+  obj.before.set_positions(imaged);
+  {
+    const auto shell = engine::make_corotational_shell();
+    const engine::ShellProblem problem{&obj.mesh.faces(), &obj.sim.rest, &obj.sim.materials,
+                                       &obj.sim.face_material, obj.mesh.num_vertices()};
+    obj.before_measures = engine::face_to_vertex(obj.before, shell->measures(problem, obj.sim.state));
+  }
+  commit_pending_loads(obj);
+  json out = {{"model", model->name()},
+              {"converged", true},
+              {"iterations", r.history.size()},
+              {"solver_iterations", r.solver_iterations},
+              {"max_deviation_mm", r.max_deviation},
+              {"rms_deviation_mm", r.rms_deviation},
+              {"tolerance_mm", r.tolerance},
+              {"max_unloading_mm", r.max_unloading},
+              {"history", history}};
+  if (op.solve.check_stability) {
+    const engine::Stability st =
+        engine::check_stability(merged.system(), merged.state(), engine::StabilityParams{}, &workspace);
+    out["equilibrium"] = stability_json(st);
+    if (const std::string w = stability_warning(st, "imaged shape under its loads"); !w.empty())
+      out["warning"] = w;
   }
   return out;
 }

@@ -19,8 +19,8 @@ struct OpParser {
 
 /// generate, load, snapshot, export, report.
 const std::vector<OpParser>& scene_op_parsers();
-/// material, constrain, fix, force, line_load, pressure, body_force, solve, simulate, probe,
-/// check.
+/// material, constrain, fix, force, line_load, pressure, body_force, solve, unload, simulate,
+/// probe, check.
 const std::vector<OpParser>& simulation_op_parsers();
 /// incise, join, patch, resect, measure, undo, redo (session_ops_surgery.cpp).
 const std::vector<OpParser>& surgery_op_parsers();

@@ -134,13 +134,10 @@ engine::LinearSolverKind linear_solver(Fields& f, engine::LinearSolverKind fallb
       f.optional_choice("linear_solver", engine::to_string(fallback), {"cholmod", "ldlt", "pcg"}));
 }
 
-SolveOp parse_solve(Fields& f) {
-  SolveOp op;
-  op.objects = f.optional_string_list("objects");
+// The settings of a static solve: every field of `solve` but `objects` and `load_factor`.
+void parse_solver_settings(Fields& f, SolveOp& op) {
   op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
   op.collapse_barrier = f.optional_bool("collapse_barrier", op.collapse_barrier);
-  op.load_factor = f.optional_positive("load_factor", op.load_factor);
-  if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
   auto& p = op.params;
   p.load_steps = f.optional_int("load_steps", p.load_steps, 1, 100000);
   p.tolerance = f.optional_positive("tolerance", p.tolerance);
@@ -159,6 +156,26 @@ SolveOp parse_solve(Fields& f) {
   p.quasi_newton_steps = f.optional_int("quasi_newton_steps", p.quasi_newton_steps, 0, 1000);
   if (!op.minimize && f.has("quasi_newton_steps"))
     f.fail("quasi_newton_steps", "applies only with \"minimize\": true (Newton steps otherwise)");
+}
+
+SolveOp parse_solve(Fields& f) {
+  SolveOp op;
+  op.objects = f.optional_string_list("objects");
+  op.load_factor = f.optional_positive("load_factor", op.load_factor);
+  if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
+  parse_solver_settings(f, op);
+  return op;
+}
+
+UnloadOp parse_unload(Fields& f) {
+  UnloadOp op;
+  op.object = object_name(f);
+  parse_solver_settings(f, op.solve);
+  if (op.solve.params.linear)
+    f.fail("analysis", "unload needs the nonlinear analysis (a linear one has no loaded shape to match)");
+  op.iterations = f.optional_int("iterations", op.iterations, 1, 1000);
+  op.shape_tolerance = f.optional_number("shape_tolerance", op.shape_tolerance);
+  if (!(op.shape_tolerance >= 0.0)) f.fail("shape_tolerance", "must be >= 0 (mm; 0 = 1 % of the mean edge length)");
   return op;
 }
 
@@ -275,6 +292,7 @@ const std::vector<OpParser>& simulation_op_parsers() {
       {"pressure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_pressure(f); }},
       {"body_force", [](Fields& f, const std::filesystem::path&) -> Op { return parse_body_force(f); }},
       {"solve", [](Fields& f, const std::filesystem::path&) -> Op { return parse_solve(f); }},
+      {"unload", [](Fields& f, const std::filesystem::path&) -> Op { return parse_unload(f); }},
       {"simulate", [](Fields& f, const std::filesystem::path&) -> Op { return parse_simulate(f); }},
       {"probe", [](Fields& f, const std::filesystem::path&) -> Op { return parse_probe(f); }},
       {"check", [](Fields& f, const std::filesystem::path&) -> Op { return parse_check(f); }},

@@ -38,11 +38,19 @@ std::vector<render::Point3> polyline(const engine::SurfaceMesh& mesh,
 
 // Per-element measures of Model 1 (the default shell model) averaged to the vertices with
 // face-area weights, for the current state with its simulated nodal rotations. The
-// before-state is the stress-free reference of the object as created: zero everywhere (its
-// topology may differ from today's after incisions and sutures).
+// before-state's are those `unload` kept (an imaged vessel under its loads), or zero
+// everywhere for a stress-free reference (its topology may differ from today's after
+// incisions and sutures, so they are not recomputed).
 std::vector<float> element_field(Field field, const SceneObject& obj,
                                  const engine::SurfaceMesh& state) {
-  if (&state != &obj.mesh) return std::vector<float>(state.num_vertices(), 0.0f);
+  if (&state != &obj.mesh) {
+    const engine::VertexMeasures& b = obj.before_measures;
+    const std::vector<double>& v = field == Field::MembraneStrain ? b.membrane_strain
+                                   : field == Field::Bending      ? b.bending_curvature
+                                                                  : b.energy_density;
+    if (v.size() != state.num_vertices()) return std::vector<float>(state.num_vertices(), 0.0f);
+    return std::vector<float>(v.begin(), v.end());
+  }
   const engine::ShellState& s = obj.sim.state;
   const auto model = engine::make_corotational_shell();
   const engine::ShellProblem problem{&state.faces(), &obj.sim.rest, &obj.sim.materials,

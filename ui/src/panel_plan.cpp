@@ -194,6 +194,16 @@ void load_controls(GuiState& s) {
     s.perform({{"op", "pressure"}, {"object", s.selected()->name},
                {"pressure", s.pressure_mmhg * kMpaPerMmHg}},
               "Pressure of " + std::to_string(int(s.pressure_mmhg)) + " mmHg on '" + s.selected()->name + "'");
+  // A segmented vessel was imaged under blood pressure: unload keeps it where it was imaged,
+  // stressed by the pressures applied, instead of inflating it a second time.
+  if (gated_button(s.widgets, "Imaged under this pressure (unload)", s.why_not(Action::EditMaterial),
+                   "The mesh is a vessel as imaged under the pressure applied: find its stress-free "
+                   "shape, so that it stays where it is, in equilibrium under that pressure, and "
+                   "'before' is the imaged vessel. Apply the pressure and hold the ends first; "
+                   "before the first incision.") &&
+      s.selected())
+    s.perform({{"op", "unload"}, {"object", s.selected()->name}},
+              "'" + s.selected()->name + "' unloaded: in equilibrium under its pressure where it was imaged");
 }
 
 void material_controls(GuiState& s) {

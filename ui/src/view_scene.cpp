@@ -29,8 +29,15 @@ std::optional<std::vector<float>> field_values(ViewField field, const app::Scene
     }
     return to_float(engine::displacement_magnitude(obj.sim.reference, mesh.positions()));
   }
-  // Model 1's per-element measures; the before state is the stress-free reference.
-  if (!current) return std::vector<float>(mesh.num_vertices(), 0.0f);
+  // Model 1's per-element measures; the before state's are those `unload` kept (an imaged
+  // vessel under its loads), or zero for a stress-free reference.
+  if (!current) {
+    const std::vector<double>& v = field == ViewField::MembraneStrain
+                                       ? obj.before_measures.membrane_strain
+                                       : obj.before_measures.bending_curvature;
+    if (v.size() != mesh.num_vertices()) return std::vector<float>(mesh.num_vertices(), 0.0f);
+    return to_float(v);
+  }
   const auto model = engine::make_corotational_shell();
   const engine::ShellProblem p{&mesh.faces(), &obj.sim.rest, &obj.sim.materials,
                                &obj.sim.face_material, mesh.num_vertices()};

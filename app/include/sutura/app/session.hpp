@@ -191,6 +191,18 @@ struct SolveOp {
   bool minimize = false;
 };
 
+/// Unloaded (zero-pressure) reference of an imaged vessel (engine::unload): the rest shape
+/// whose equilibrium under the object's loads (applied and pending, all at full value) is its
+/// current shape. The solver settings are a solve's (`objects`, `load_factor` and the linear
+/// analysis excepted); `iterations` bounds the forward solves, `shape_tolerance` (mm, 0 = 1 %
+/// of the mean edge length) is how close the loaded shape must come.
+struct UnloadOp {
+  std::string object;
+  SolveOp solve;
+  int iterations = 20;
+  double shape_tolerance = 0.0;
+};
+
 /// Implicit dynamics of the named objects (all when empty).
 struct SimulateOp {
   std::vector<std::string> objects;
@@ -324,7 +336,7 @@ struct RedoOp {};
 
 using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
-                        SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
+                        UnloadOp, SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
                         RemeshOp, MeasureOp, DistanceOp, UndoOp, RedoOp>;
 
 /// One parsed action with where it came from.

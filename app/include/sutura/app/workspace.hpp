@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sutura/engine/measure/vertex_fields.hpp"
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/surface_attributes.hpp"
 
@@ -21,6 +22,10 @@ struct SceneObject {
   std::string name;
   engine::SurfaceMesh mesh;    ///< current state
   engine::SurfaceMesh before;  ///< pre-operative state: the mesh as generated or loaded
+  /// Model 1's measures of the pre-operative state per vertex of `before`, when that state is
+  /// stressed: set by `unload` (the imaged vessel in equilibrium under its loads). Empty
+  /// vectors: the pre-operative state is the stress-free one, zero everywhere.
+  engine::VertexMeasures before_measures;
   /// Everything simulated or drawn on `mesh`, carried across every edit by the engine
   /// (state, rest shape and pending y0, materials, constraints, loads, velocity, reference
   /// positions, marks).
