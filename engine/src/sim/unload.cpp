@@ -59,6 +59,7 @@ UnloadResult unload(const ShellSystem& sys, const std::vector<Vec3>& target,
                     const UnloadParams& params, SolverWorkspace* workspace) {
   if (sys.model == nullptr || sys.problem.faces == nullptr)
     throw InvalidArgument("unload: the system has no model or no faces");
+  if (sys.problem.num_nodes == 0) throw InvalidArgument("unload: the system has no nodes");
   if (target.size() != sys.problem.num_nodes)
     throw InvalidArgument("unload: " + std::to_string(target.size()) + " target positions for " +
                           std::to_string(sys.problem.num_nodes) + " nodes");
@@ -90,7 +91,6 @@ UnloadResult unload(const ShellSystem& sys, const std::vector<Vec3>& target,
   Eigen::VectorXd X = xt;
   ShellState state{target, std::vector<Quat>(target.size(), Quat::Identity())};
   Eigen::VectorXd X_good, f_good;  // the rest of the last successful solve and its deviation
-  ShellState state_good;           // its equilibrium
   // Anderson's history: the last depth + 1 rest shapes and deviations.
   std::vector<Eigen::VectorXd> hist_X, hist_f;
   Deviation last{};
@@ -156,7 +156,6 @@ UnloadResult unload(const ShellSystem& sys, const std::vector<Vec3>& target,
     last = d;
     X_good = X;
     f_good = f;
-    state_good = state;
     hist_X.push_back(X);
     hist_f.push_back(f);
     if (static_cast<int>(hist_X.size()) > params.acceleration_depth + 1) {

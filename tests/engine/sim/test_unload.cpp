@@ -171,6 +171,9 @@ TEST(Unload, FailsClearlyAndChangesNothingOnBadInput) {
   UnloadParams params;
   std::vector<Vec3> short_target(tube.target.begin(), tube.target.end() - 1);
   EXPECT_THROW(unload(tube.sys, short_target, params), InvalidArgument);
+  ShellSystem empty = tube.sys;
+  empty.problem.num_nodes = 0;
+  EXPECT_THROW(unload(empty, {}, params), InvalidArgument);
   params.max_iterations = 0;
   EXPECT_THROW(unload(tube.sys, tube.target, params), InvalidArgument);
   params.max_iterations = 20;
