@@ -296,18 +296,6 @@ json Run::execute(const UnloadOp& op) {
   const std::vector<engine::Vec3> imaged = merged.state().x;
   engine::SolverWorkspace workspace;
   const engine::UnloadResult r = engine::unload(merged.system(), imaged, params, &workspace);
-  json history = json::array();
-  for (std::size_t k = 0; k < r.history.size(); ++k) {
-    const engine::UnloadIteration& h = r.history[k];
-    json e = {{"iteration", k + 1}, {"solved", h.solved}, {"step", h.step},
-              {"accelerated", h.accelerated},
-              {"solver_iterations", h.solver_iterations}};
-    if (h.solved) {
-      e["max_deviation_mm"] = h.max_deviation;
-      e["rms_deviation_mm"] = h.rms_deviation;
-    }
-    history.push_back(e);
-  }
   if (r.stopped) throw OpCancelled(r.message);
   if (!r.converged) throw std::runtime_error(r.message);
   // The imaged shape stays the pre-operative one ("before" of measurements, the reference of
@@ -328,6 +316,18 @@ json Run::execute(const UnloadOp& op) {
     obj.before_measures = engine::face_to_vertex(obj.before, shell->measures(problem, obj.sim.state));
   }
   commit_pending_loads(obj);
+  json history = json::array();
+  for (std::size_t k = 0; k < r.history.size(); ++k) {
+    const engine::UnloadIteration& h = r.history[k];
+    json e = {{"iteration", k + 1}, {"solved", h.solved}, {"step", h.step},
+              {"accelerated", h.accelerated},
+              {"solver_iterations", h.solver_iterations}};
+    if (h.solved) {
+      e["max_deviation_mm"] = h.max_deviation;
+      e["rms_deviation_mm"] = h.rms_deviation;
+    }
+    history.push_back(e);
+  }
   json out = {{"model", model->name()},
               {"converged", true},
               {"iterations", r.history.size()},

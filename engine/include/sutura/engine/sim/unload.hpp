@@ -11,8 +11,8 @@
 // replaced: unload applies to a body whose rest is one vertex field (a vessel before any
 // edit), not to one carrying a suture's 1:n rest mapping.
 //
-// The plain fixed point converges linearly, and slowly where the wall is soft in bending (the
-// bundled arch: the deviation shrinks by 0.73 per solve, 11 solves). Each update is therefore
+// The plain fixed point converges linearly, and slowly where the wall is soft in bending
+// (measured in docs/validation.md). Each update is therefore
 // Anderson-accelerated (Walker & Ni 2011, type II, the last `acceleration_depth` steps): the
 // least-squares combination of the last steps whose deviations best cancel the current one.
 // When the largest deviation grows, the history restarts and the step a is halved for the
