@@ -7,6 +7,7 @@
 #include <iostream>
 #include <numbers>
 
+#include "sutura/engine/anatomy/segmentation_export.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
@@ -102,6 +103,18 @@ CLI::App* add_generate_command(CLI::App& app, GenerateArchOptions& o) {
                    "all: innominate, left common carotid and left subclavian; lsa: subclavian only")
       ->capture_default_str()
       ->check(CLI::IsMember({"all", "lsa"}));
+  arch->add_flag("--as-segmentation", o.as_segmentation,
+                 "Also write aorta_segmentation.stl: the aorta as a segmentation tool exports it "
+                 "(closed by flat caps, dense, noisy, unwelded binary STL), the input of `prepare`");
+  arch->add_option("--segmentation-edge", o.segmentation_edge,
+                   "Largest mean edge of the segmentation export, mm (faces are split into four "
+                   "until it holds)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 2.0));
+  arch->add_option("--segmentation-noise", o.segmentation_noise,
+                   "Noise of the segmentation export along the normals, mm (uniform, +-; default: "
+                   "7 % of --segmentation-edge)")
+      ->check(CLI::Range(0.0, 0.5));
   arch->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
   return arch;
 }
@@ -157,6 +170,26 @@ int run_generate_arch(const GenerateArchOptions& o) {
   engine::save_mesh(anatomy.aorta, dir / "aorta.ply");
   engine::save_mesh(anatomy.pulmonary, dir / "pulmonary.ply");
   engine::write_file_atomically(dir / "landmarks.json", landmarks_json(anatomy, params).dump(2) + "\n");
+  if (o.as_segmentation) {
+    engine::SegmentationLikeParams sp;
+    sp.max_edge_length = o.segmentation_edge;
+    sp.noise = o.segmentation_noise.value_or(0.07 * o.segmentation_edge);
+    // From the fine surface at the coarsest: a segmentation resolves curvature well below a
+    // millimetre, and the coarse arch's facets would be creases in it.
+    const engine::SurfaceMesh export_mesh = engine::segmentation_like(
+        params.target_edge_length > engine::kArchFineEdgeLength
+            ? engine::generate_arch([&] {
+                engine::ArchParams fine = params;
+                fine.target_edge_length = engine::kArchFineEdgeLength;
+                return fine;
+              }()).aorta
+            : anatomy.aorta,
+        sp);
+    engine::save_mesh(export_mesh, dir / "aorta_segmentation.stl");
+    if (!o.quiet)
+      std::cerr << "sutura: aorta_segmentation.stl: " << export_mesh.num_faces()
+                << " faces, closed, mean edge " << export_mesh.mean_edge_length() << " mm\n";
+  }
   if (!o.quiet) {
     for (const auto* m : {&anatomy.aorta, &anatomy.pulmonary})
       std::cerr << "sutura: " << (m == &anatomy.aorta ? "aorta" : "pulmonary") << ": "

@@ -1,6 +1,7 @@
 #pragma once
 // `sutura generate arch`: writes the synthetic infant aortic arch (aorta.ply, pulmonary.ply)
-// and its landmarks (landmarks.json) into a directory. See docs/anatomy.md.
+// and its landmarks (landmarks.json) into a directory, and on request a synthetic segmentation
+// export of the aorta (aorta_segmentation.stl). See docs/anatomy.md and docs/patient-data.md.
 #include <optional>
 #include <string>
 
@@ -18,6 +19,14 @@ struct GenerateArchOptions {
   std::optional<double> coarctation;   ///< ArchParams::coarctation_fraction
   std::optional<double> lsa_length;    ///< mm, ArchParams::lsa_length
   std::string branches = "all";        ///< "all" (innominate, carotid, subclavian) | "lsa"
+  /// Also write aorta_segmentation.stl: the aorta (generated at the fine resolution at the
+  /// coarsest) closed by flat caps, subdivided to segmentation_edge and noisy
+  /// (engine::segmentation_like), as an unwelded binary STL.
+  bool as_segmentation = false;
+  double segmentation_edge = 0.3;  ///< mm
+  /// mm; default 7 % of segmentation_edge (a segmentation's noise scales with its voxels,
+  /// and so does its triangle size)
+  std::optional<double> segmentation_noise;
   bool quiet = false;
 };
 

@@ -3,6 +3,7 @@
 //   info MESH                  load a mesh file and print its topology summary
 //   distance A B               Hausdorff distance between two mesh files
 //   generate arch --out DIR    write the synthetic infant aortic arch and its landmarks
+//   prepare MESH --out DIR     turn a segmentation export into a vessel to plan on
 //   gui [SESSION]              the interactive planning window (records a session)
 // Exit codes: 0 success, 1 the session or mesh failed (message on stderr), other non-zero
 // codes for command-line usage errors (from CLI11).
@@ -13,6 +14,7 @@
 
 #include "generate_command.hpp"
 #include "gui_command.hpp"
+#include "prepare_command.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session_runner.hpp"
@@ -175,6 +177,8 @@ int main(int argc, char** argv) {
 
   sutura::app::GenerateArchOptions arch_options;
   auto* arch = sutura::app::add_generate_command(app, arch_options);
+  sutura::app::PrepareOptions prepare_options;
+  auto* prepare = sutura::app::add_prepare_command(app, prepare_options);
   sutura::ui::GuiOptions gui_options;
   auto* gui = sutura::app::add_gui_command(app, gui_options);
 
@@ -188,6 +192,7 @@ int main(int argc, char** argv) {
     if (*info) return run_info(mesh_file, weld);
     if (*distance) return run_distance(distance_a, distance_b, spacing);
     if (*arch) return sutura::app::run_generate_arch(arch_options);
+    if (*prepare) return sutura::app::run_prepare(prepare_options);
     if (*gui) return sutura::ui::run_gui(gui_options);
   } catch (const std::exception& e) {
     std::cerr << "sutura: error: " << e.what() << "\n";

@@ -42,7 +42,10 @@ nlohmann::json mesh_quality_json(const engine::MeshQuality& q, const engine::Sur
 nlohmann::json hausdorff_json(const engine::HausdorffDistance& h) {
   return {{"a_to_b_mm", h.a_to_b},       {"b_to_a_mm", h.b_to_a},
           {"symmetric_mm", h.symmetric}, {"mean_a_to_b_mm", h.mean_a_to_b},
-          {"mean_b_to_a_mm", h.mean_b_to_a}, {"samples_a", h.samples_a},
+          {"mean_b_to_a_mm", h.mean_b_to_a},
+          {"a_to_b_at", {h.a_to_b_at.x(), h.a_to_b_at.y(), h.a_to_b_at.z()}},
+          {"b_to_a_at", {h.b_to_a_at.x(), h.b_to_a_at.y(), h.b_to_a_at.z()}},
+          {"samples_a", h.samples_a},
           {"samples_b", h.samples_b}};
 }
 

@@ -39,14 +39,15 @@ int divisions(const SurfaceMesh& m, FaceId f, double spacing) {
 
 // Largest and mean distance from the samples of `from` to the surface in `tree`.
 void one_side(const SurfaceMesh& from, const Tree& tree, double spacing, double& largest,
-              double& mean, std::size_t& count) {
+              Vec3& largest_at, double& mean, std::size_t& count) {
   double sum = 0.0;
   largest = 0.0;
+  largest_at = from.positions().front();
   count = 0;
   auto add = [&](const Vec3& p) {
     const Point q(p.x(), p.y(), p.z());
     const double d = std::sqrt(CGAL::to_double(tree.squared_distance(q)));
-    largest = std::max(largest, d);
+    if (d > largest) largest = d, largest_at = p;
     sum += d;
     ++count;
   };
@@ -87,8 +88,8 @@ HausdorffDistance hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
   ta.accelerate_distance_queries();
   tb.accelerate_distance_queries();
   HausdorffDistance h;
-  one_side(a, tb, spacing, h.a_to_b, h.mean_a_to_b, h.samples_a);
-  one_side(b, ta, spacing, h.b_to_a, h.mean_b_to_a, h.samples_b);
+  one_side(a, tb, spacing, h.a_to_b, h.a_to_b_at, h.mean_a_to_b, h.samples_a);
+  one_side(b, ta, spacing, h.b_to_a, h.b_to_a_at, h.mean_b_to_a, h.samples_b);
   h.symmetric = std::max(h.a_to_b, h.b_to_a);
   return h;
 }

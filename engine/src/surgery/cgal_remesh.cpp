@@ -10,6 +10,7 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/tangential_relaxation.h>
 #include <CGAL/Surface_mesh.h>
@@ -109,7 +110,7 @@ std::array<Point, 3> corners_after(const Mesh& mesh, FI f, VI from, const Point&
   return p;
 }
 
-// Needles the flips cannot mend: a band face whose smallest angle is below 20 degrees loses its
+// Needles the flips cannot mend: a band face whose smallest angle is below `goal` loses its
 // shortest edge by a collapse into one end, where the other end may go (not fixed, not on the
 // open boundary, all its faces in the band, on a constrained polyline only along it as one of
 // its inner vertices) and the collapse raises the smallest angle around it without folding a
@@ -118,8 +119,8 @@ std::array<Point, 3> corners_after(const Mesh& mesh, FI f, VI from, const Point&
 // Returns the number of collapses. Deterministic: faces in index order.
 template <class EdgeMap, class VertexMap, class IdMap, class FaceMap, class OnPolyline>
 int collapse_needles(Mesh& mesh, EdgeMap& constrained, VertexMap& fixed, IdMap& old_id,
-                     const FaceMap& in_region, const OnPolyline& on_polyline) {
-  constexpr double goal = 20.0 * M_PI / 180.0;
+                     const FaceMap& in_region, const OnPolyline& on_polyline,
+                     double goal = 20.0 * M_PI / 180.0) {
   int collapses = 0;
   std::vector<FI> bad;
   for (FI f : mesh.faces()) {
@@ -421,6 +422,141 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   for (int round = 0; round < 4; ++round) {
     if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline) == 0) break;
     delaunay_flips(mesh, econ, in_region);
+  }
+
+  if (in.max_deviation > 0.0) {
+    // Where the surface bends faster than the target length can follow: split the longest
+    // edge of every face that strays too far, at its midpoint moved onto the input.
+    const auto nearest_on = [&](const Point& q, FI f, bool on_line) {
+      if (on_line) return polylines.closest_point(q);
+      return surface[static_cast<std::size_t>(patch[f] / 2)]->closest_point(q);
+    };
+    const double shortest_split = 2.0 * in.bands.back().target_edge_length / 3.0;
+    const double shortest_border_split = in.bands.back().target_edge_length;
+    for (int round = 0; round < 6; ++round) {
+      std::vector<EI> split;
+      for (FI f : mesh.faces()) {
+        std::array<Vec3, 3> p;
+        std::array<HI, 3> hs;
+        int k = 0;
+        for (HI h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+          hs[k] = h;
+          p[k++] = to_vec(mesh.point(mesh.target(h)));
+        }
+        double worst = 0.0;
+        for (const Vec3& q : {Vec3((p[0] + p[1] + p[2]) / 3.0), Vec3(0.5 * (p[0] + p[1])),
+                              Vec3(0.5 * (p[1] + p[2])), Vec3(0.5 * (p[2] + p[0]))})
+          worst = std::max(worst, (to_vec(nearest_on(to_point(q), f, false)) - q).norm());
+        if (worst <= in.max_deviation) continue;
+        // hs[k] runs from corner k-1 to corner k: its length is |p[k] - p[k-1]|. No edge is
+        // split below a third of the target, and none on the open boundary below half of it (a
+        // short edge there makes a thin face that neither a flip nor smoothing can mend).
+        int longest = -1;
+        double longest_length = 0.0;
+        for (int j = 0; j < 3; ++j) {
+          const double l = (p[j] - p[(j + 2) % 3]).norm();
+          if (l > longest_length) longest_length = l, longest = j;
+        }
+        if (longest_length <= (mesh.is_border(mesh.edge(hs[longest])) ? shortest_border_split : shortest_split))
+          continue;
+        if (longest >= 0) split.push_back(mesh.edge(hs[longest]));
+      }
+      std::sort(split.begin(), split.end());
+      split.erase(std::unique(split.begin(), split.end()), split.end());
+      if (split.empty()) break;
+      for (EI e : split) {
+        const HI h = mesh.halfedge(e);
+        const bool line = econ[e];
+        const FI f = mesh.is_border(h) ? mesh.face(mesh.opposite(h)) : mesh.face(h);
+        const Point mid = nearest_on(CGAL::midpoint(mesh.point(mesh.source(h)), mesh.point(mesh.target(h))), f, line);
+        const int patch_h = mesh.is_border(h) ? 0 : patch[mesh.face(h)];
+        const int patch_o = mesh.is_border(mesh.opposite(h)) ? 0 : patch[mesh.face(mesh.opposite(h))];
+        // hnew: source(h) -> v, followed by h: v -> target(h) (CGAL::Euler::split_edge).
+        const HI hnew = CGAL::Euler::split_edge(h, mesh);
+        mesh.point(mesh.target(hnew)) = mid;
+        econ[mesh.edge(hnew)] = line;
+        for (const auto& [side, side_patch] : {std::pair{hnew, patch_h}, std::pair{mesh.opposite(h), patch_o}}) {
+          if (mesh.is_border(side)) continue;
+          const HI other = side == hnew ? mesh.next(h) : mesh.next(mesh.opposite(hnew));
+          const HI diagonal = CGAL::Euler::split_face(side, other, mesh);
+          for (const FI g : {mesh.face(diagonal), mesh.face(mesh.opposite(diagonal))}) {
+            patch[g] = side_patch;
+            in_region[g] = true;
+          }
+        }
+      }
+      delaunay_flips(mesh, econ, in_region);
+    }
+  }
+  if (in.repair_below_deg > 0.0) {
+    const double below = in.repair_below_deg * M_PI / 180.0;
+    // A thin face on a short open-boundary edge: both ends of the edge move along the
+    // boundary, each to midway between its two boundary neighbours (on the input polyline), as
+    // no interior move can widen that face. A move that would fold a face is not made.
+    for (HI h : mesh.halfedges()) {
+      if (!mesh.is_border(h)) continue;
+      const HI inner = mesh.opposite(h);
+      const Point &a = mesh.point(mesh.source(inner)), &b = mesh.point(mesh.target(inner));
+      const Point& c = mesh.point(mesh.target(mesh.next(inner)));
+      if (std::sqrt(CGAL::squared_distance(a, b)) >= 0.5 * in.bands.back().target_edge_length ||
+          smallest_angle(a, b, c) >= below)
+        continue;
+      for (const VI r : {mesh.source(h), mesh.target(h)}) {
+        if (vfixed[r]) continue;
+        // The border half-edges into and out of r.
+        HI into = Mesh::null_halfedge();
+        for (HI g : CGAL::halfedges_around_target(mesh.halfedge(r), mesh))
+          if (mesh.is_border(g)) into = g;
+        if (into == Mesh::null_halfedge()) continue;
+        const VI before = mesh.source(into), after = mesh.target(mesh.next(into));
+        const Point old_place = mesh.point(r);
+        const Point place = polylines.closest_point(CGAL::midpoint(mesh.point(before), mesh.point(after)));
+        std::vector<std::pair<FI, Vec3>> normals;
+        for (FI f : CGAL::faces_around_target(mesh.halfedge(r), mesh))
+          if (f != Mesh::null_face()) {
+            const auto p = corners_after(mesh, f, Mesh::null_vertex(), Point());
+            normals.emplace_back(f, normal_of(p[0], p[1], p[2]));
+          }
+        mesh.point(r) = place;
+        for (const auto& [f, n_old] : normals) {
+          const auto p = corners_after(mesh, f, Mesh::null_vertex(), Point());
+          const Vec3 n_new = normal_of(p[0], p[1], p[2]);
+          if (!(n_new.dot(n_old) > 0.2 * n_new.norm() * n_old.norm())) mesh.point(r) = old_place;
+        }
+      }
+    }
+    auto held = mesh.add_property_map<VI, bool>("v:repair_held", false).first;
+    for (VI v : mesh.vertices()) held[v] = vfixed[v] || mesh.is_border(v) || on_polyline(v);
+    for (int round = 0; round < 6; ++round) {
+      std::vector<FI> region;
+      for (FI f : mesh.faces()) {
+        std::array<Point, 3> p;
+        int k = 0;
+        for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) p[k++] = mesh.point(v);
+        if (!in_region[f] || smallest_angle(p[0], p[1], p[2]) >= below) continue;
+        for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+          for (FI g : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+            if (g != Mesh::null_face() && in_region[g]) region.push_back(g);
+      }
+      std::sort(region.begin(), region.end());
+      region.erase(std::unique(region.begin(), region.end()), region.end());
+      if (region.empty()) break;
+      PMP::angle_and_area_smoothing(region, mesh,
+                                    CGAL::parameters::number_of_iterations(1)
+                                        .use_angle_smoothing(true)
+                                        .use_area_smoothing(false)
+                                        .do_project(false)
+                                        .vertex_is_constrained_map(held));
+      for (FI f : region)
+        for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+          if (!held[v]) mesh.point(v) = project(v);
+      delaunay_flips(mesh, econ, in_region);
+      if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline, below) > 0) {
+        delaunay_flips(mesh, econ, in_region);
+        for (VI v : mesh.vertices()) held[v] = vfixed[v] || mesh.is_border(v) || on_polyline(v);
+      }
+    }
+    mesh.remove_property_map(held);
   }
 
   // Old faces by their vertex triple, to recognise faces the remesh left alone.

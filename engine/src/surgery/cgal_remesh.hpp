@@ -26,6 +26,20 @@ struct CgalRemeshInput {
   std::vector<std::pair<int, int>> constrained_edges;  ///< kept as polylines
   std::vector<bool> constrained_vertices;              ///< per vertex: never moved nor removed
   std::vector<bool> removed_boundary_vertices;  ///< per vertex: collapsed along the boundary first
+  /// After remeshing, a face whose centroid or an edge midpoint lies farther than this (mm)
+  /// from the input surface has its longest edge split at the projected midpoint, if that
+  /// edge is longer than 2/3 of the (last band's) target (on the open boundary: longer than
+  /// the target) (rounds of splits and Delaunay
+  /// flips, at most 6): curvature the target length cannot follow gets finer faces, down to
+  /// a third of the target. 0: off (the surgical bands). Every face must then be in `region`.
+  double max_deviation = 0.0;
+  /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
+  /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
+  /// and the faces around their corners get CGAL's angle smoothing (open boundaries, polylines
+  /// and fixed vertices held, the others projected back), Delaunay flips, and the needle
+  /// collapses of the bands with this angle as their goal; 6 rounds at most.
+  /// 0: off.
+  double repair_below_deg = 0.0;
 };
 
 /// Where an output point lies on the input surface.

@@ -10,6 +10,8 @@ struct HausdorffDistance {
   double b_to_a = 0.0;     ///< mm: the same from B to A
   double symmetric = 0.0;  ///< mm: max(a_to_b, b_to_a)
   double mean_a_to_b = 0.0, mean_b_to_a = 0.0;  ///< mm: over the samples
+  Vec3 a_to_b_at = Vec3::Zero();  ///< mm: the sample of A at a_to_b from B (the first such)
+  Vec3 b_to_a_at = Vec3::Zero();  ///< mm: the sample of B at b_to_a from A
   std::size_t samples_a = 0, samples_b = 0;
 };
 

@@ -1,0 +1,115 @@
+#include "prepare_command.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "sutura/app/report.hpp"
+#include "sutura/engine/atomic_file.hpp"
+#include "sutura/engine/mesh_io.hpp"
+
+namespace sutura::app {
+namespace {
+
+nlohmann::json vec(const engine::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
+  auto* prepare = app.add_subcommand(
+      "prepare", "Turn a segmentation export (closed, dense STL/OBJ/PLY with flat end caps) into a "
+                 "vessel to plan on: opens the caps, smooths, remeshes; writes vessel.ply and "
+                 "prepare.json into --out");
+  prepare->add_option("input", o.input, "Mesh file from the segmentation tool")->required();
+  prepare->add_option("-o,--out", o.out_dir, "Output directory (created if missing)")->required();
+  prepare->add_option("--edge-length", o.params.edge_length,
+                      "Target edge length in mm (default: 16 edges around the narrowest end; "
+                      "allowed: 6 to 64)");
+  prepare->add_flag("--keep-caps", o.params.keep_caps,
+                    "Find the flat end caps and report them, but keep them closed");
+  prepare->add_option("--smoothing", o.params.smoothing_iterations,
+                      "Taubin smoothing iterations against segmentation noise (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  prepare->add_option("--max-faces", o.params.max_faces, "Most faces of the result")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(20'000'000)));
+  prepare->add_option("--max-input-faces", o.max_input_faces,
+                      "Most triangles of the input file (refused before it is read)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t(1), std::size_t(50'000'000)));
+  prepare->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
+  return prepare;
+}
+
+nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions& o, double seconds) {
+  nlohmann::json ends = nlohmann::json::array();
+  for (const auto& e : r.ends)
+    ends.push_back({{"name", e.end.name},
+                    {"centre", vec(e.end.centre)},
+                    {"normal", vec(e.end.normal)},
+                    {"radius", e.end.radius},
+                    {"flatness", e.flatness},
+                    {"from", e.was_cap ? (o.params.keep_caps ? "cap (kept)" : "cap (opened)") : "open end"},
+                    {"cap_faces", e.cap_faces}});
+  nlohmann::json dropped = nlohmann::json::array();
+  for (const auto& d : r.dropped)
+    dropped.push_back({{"faces", d.faces}, {"area", d.area}, {"centroid", vec(d.centroid)}});
+  return {{"format", "sutura-prepare-report"},
+          {"version", 1},
+          {"units", "mm"},
+          {"input", {{"file", o.input}, {"vertices", r.input_vertices}, {"faces", r.input_faces}}},
+          {"output",
+           {{"file", "vessel.ply"},
+            {"vertices", r.vessel.num_vertices()},
+            {"faces", r.vessel.num_faces()},
+            {"boundary_loops", r.vessel.boundary_loops().size()}}},
+          {"dropped_components", dropped},
+          {"flipped_orientation", r.flipped},
+          {"ends", ends},
+          {"edge_length", {{"target", r.edge_length},
+                           {"derived", r.edge_length_derived},
+                           {"min", r.min_edge},
+                           {"max", r.max_edge},
+                           {"mean", r.mean_edge}}},
+          {"min_angle_deg", r.min_angle_deg},
+          {"smoothing_iterations", o.params.smoothing_iterations},
+          {"hausdorff_to_input", hausdorff_json(r.to_input)},
+          {"seconds", seconds}};
+}
+
+int run_prepare(const PrepareOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path dir(o.out_dir);
+  const fs::path vessel_file = dir / "vessel.ply", report_file = dir / "prepare.json";
+  std::error_code ec;
+  for (const auto& out : {vessel_file, report_file})
+    if (fs::exists(out, ec) && fs::equivalent(out, o.input, ec))
+      throw engine::InvalidArgument("prepare: " + out.string() +
+                                    " is the input file; choose another --out directory");
+  const auto start = std::chrono::steady_clock::now();
+  engine::ImportOptions io;
+  io.max_faces = o.max_input_faces;
+  const engine::SurfaceMesh input = engine::load_mesh(o.input, io);
+  const engine::PrepareResult result = engine::prepare_vessel(input, o.params);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fs::create_directories(dir);
+  engine::save_mesh(result.vessel, vessel_file);
+  engine::write_file_atomically(report_file, prepare_json(result, o, seconds).dump(2) + "\n");
+  if (!o.quiet) {
+    std::cerr << "sutura: " << o.input << ": " << result.input_faces << " faces in, "
+              << result.vessel.num_faces() << " out (edge " << result.edge_length << " mm, min angle "
+              << result.min_angle_deg << " deg, Hausdorff to the input " << result.to_input.a_to_b
+              << " mm)\n";
+    for (const auto& d : result.dropped)
+      std::cerr << "sutura: dropped a component of " << d.faces << " faces (" << d.area << " mm^2)\n";
+    for (const auto& e : result.ends)
+      std::cerr << "sutura: " << e.end.name << ": radius " << e.end.radius << " mm at ("
+                << e.end.centre.x() << ", " << e.end.centre.y() << ", " << e.end.centre.z() << ")"
+                << (e.was_cap ? (o.params.keep_caps ? ", cap kept" : ", cap opened") : ", open end") << "\n";
+    std::cerr << "sutura: prepared in " << seconds << " s into " << dir.string() << "/\n";
+  }
+  return 0;
+}
+
+}  // namespace sutura::app

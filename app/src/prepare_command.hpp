@@ -1,0 +1,36 @@
+#pragma once
+// `sutura prepare INPUT --out DIR`: a segmentation export (closed, dense, noisy STL with flat
+// end caps) becomes a vessel to plan on: DIR/vessel.ply and DIR/prepare.json. The steps and
+// their limits: engine/include/sutura/engine/patient/prepare.hpp, docs/patient-data.md.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "sutura/engine/patient/prepare.hpp"
+
+namespace sutura::app {
+
+struct PrepareOptions {
+  std::string input;
+  std::string out_dir;
+  engine::PrepareParams params;
+  std::size_t max_input_faces = 4'000'000;  ///< refused before parsing beyond this
+  bool quiet = false;
+};
+
+/// Adds the `prepare` subcommand to `app` and returns it.
+CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& options);
+
+/// prepare.json content: format header, input and result counts, the ends, the dropped
+/// components, quality and the Hausdorff distance to the input.
+nlohmann::json prepare_json(const engine::PrepareResult& result, const PrepareOptions& options,
+                            double seconds);
+
+/// Loads, prepares and writes (each file atomically; the input is never overwritten). Throws
+/// engine::MeshIoError, engine::PrepareError or engine::InvalidArgument with a message that
+/// names the file or the problem. Returns 0.
+int run_prepare(const PrepareOptions& options);
+
+}  // namespace sutura::app
