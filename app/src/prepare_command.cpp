@@ -52,6 +52,8 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
                     {"flatness", e.flatness},
                     {"from", e.was_cap ? (o.params.keep_caps ? "cap (kept)" : "cap (opened)") : "open end"},
                     {"cap_faces", e.cap_faces}});
+  nlohmann::json steps = nlohmann::json::object();
+  for (const auto& [step, t] : r.step_seconds) steps[step] = t;
   nlohmann::json dropped = nlohmann::json::array();
   for (const auto& d : r.dropped)
     dropped.push_back({{"faces", d.faces}, {"area", d.area}, {"centroid", vec(d.centroid)}});
@@ -75,7 +77,8 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
           {"min_angle_deg", r.min_angle_deg},
           {"smoothing_iterations", o.params.smoothing_iterations},
           {"hausdorff_to_input", hausdorff_json(r.to_input)},
-          {"seconds", seconds}};
+          {"seconds", seconds},
+          {"step_seconds", steps}};
 }
 
 int run_prepare(const PrepareOptions& o) {

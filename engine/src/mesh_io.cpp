@@ -297,6 +297,26 @@ std::vector<std::size_t> weld(const std::vector<Vec3>& p, const std::vector<char
       if (key(order[k]) == key(order[k - 1])) clusters.unite(order[k], order[k - 1]);
     }
   } else {
+    // A later exact copy of a kept vertex joins that vertex and nothing else: whatever else
+    // lies within eps of the point was either joined by the kept vertex already or, coming
+    // later, was within eps of it and so not kept. Such copies (every corner of an STL but
+    // the first at each point) skip the grid, which the rest of the pass would look up 27
+    // times each; the clusters are the same.
+    std::vector<std::size_t> first_copy(p.size());
+    {
+      std::vector<std::size_t> order;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        first_copy[i] = i;
+        if (used[i]) order.push_back(i);
+      }
+      const auto key = [&](std::size_t i) { return std::tie(p[i].x(), p[i].y(), p[i].z()); };
+      std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return key(a) < key(b) || (key(a) == key(b) && a < b);
+      });
+      for (std::size_t k = 1; k < order.size(); ++k)
+        if (key(order[k]) == key(order[k - 1])) first_copy[order[k]] = first_copy[order[k - 1]];
+    }
+    std::vector<char> kept(p.size(), 0);
     std::unordered_map<Cell, std::vector<std::size_t>, CellHash> grid;
     const auto cell_of = [&](const Vec3& x) {
       const auto coordinate = [&](int k) {
@@ -306,6 +326,10 @@ std::vector<std::size_t> weld(const std::vector<Vec3>& p, const std::vector<char
     };
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!used[i]) continue;
+      if (first_copy[i] != i && kept[first_copy[i]]) {
+        clusters.unite(i, first_copy[i]);
+        continue;
+      }
       const Cell c = cell_of(p[i]);
       bool joined = false;
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
@@ -322,7 +346,10 @@ std::vector<std::size_t> weld(const std::vector<Vec3>& p, const std::vector<char
           }
         }
       }
-      if (!joined) grid[c].push_back(i);
+      if (!joined) {
+        grid[c].push_back(i);
+        kept[i] = 1;
+      }
     }
   }
 

@@ -1,6 +1,7 @@
 #include "sutura/engine/patient/prepare.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -284,6 +285,12 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
     throw InvalidArgument("prepare: the crease angle must be in [10, 80] degrees");
 
   PrepareResult result;
+  auto clock = std::chrono::steady_clock::now();
+  const auto step_done = [&](const char* step) {
+    const auto now = std::chrono::steady_clock::now();
+    result.step_seconds.emplace_back(step, std::chrono::duration<double>(now - clock).count());
+    clock = now;
+  };
   result.input_vertices = input.num_vertices();
   result.input_faces = input.num_faces();
 
@@ -322,6 +329,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   for (std::size_t f = 0; f < keep.size(); ++f) keep[f] = component[f] == largest;
   SurfaceMesh vessel = components == 1 ? input : submesh(input, keep);
 
+  step_done("components");
   // Crossing faces make every later step meaningless (which side is the lumen?).
   const auto crossings = self_intersections(vessel, 100);
   if (!crossings.empty()) {
@@ -333,6 +341,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
                            at(where) + "; repair the segmentation before preparing it");
   }
 
+  step_done("self_intersections");
   // 2. Outward orientation.
   if (enclosed_volume6(vessel) < 0.0) {
     std::vector<FaceIndices> faces = vessel.faces();
@@ -431,6 +440,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   }
   const SurfaceMesh reference = opened;  // the input without its caps: the Hausdorff target
 
+  step_done("ends");
   // 4. Smoothing: open ends (projected onto their planes first) and cap rims are held.
   std::vector<Vec3> x = opened.positions();
   std::vector<bool> held(x.size(), false);
@@ -455,6 +465,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
     if (d.norm() > bound) x[v] = unsmoothed[v] + d * (bound / d.norm());
   }
 
+  step_done("smoothing");
   // 5. Isotropic remeshing onto the smoothed surface.
   detail::CgalRemeshInput in;
   in.positions = &x;
@@ -467,9 +478,11 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   // distance to the input stays below a tenth of it.
   in.max_deviation = 0.03 * h;
   in.repair_below_deg = 27.0;
+  in.coarsen_below = 0.5 * h;
   detail::CgalRemeshOutput out = detail::cgal_remesh(in);
   result.vessel = SurfaceMesh(std::move(out.positions), std::move(out.faces));
 
+  step_done("remeshing");
   // The ends as the remeshed loops show them: each end takes the loop nearest its centre.
   std::vector<Plane> loops;
   for (const auto& loop : result.vessel.boundary_loops())
@@ -504,6 +517,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   result.mean_edge = sum / static_cast<double>(edges.size());
   // Samples h / 5 apart: the one-sided maxima are short of the true ones by at most that.
   result.to_input = hausdorff_distance(result.vessel, reference, h / 5.0);
+  step_done("measuring");
   return result;
 }
 

@@ -14,6 +14,11 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/tangential_relaxation.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Constrained_placement.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Midpoint_placement.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include "sutura/engine/surgery/surface_point.hpp"
 
@@ -359,6 +364,18 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   };
 
   dissolve_boundary_vertices(mesh, econ, vfixed, old_id, in_region, in.removed_boundary_vertices);
+
+  if (in.coarsen_below > 0.0) {
+    namespace SMS = CGAL::Surface_mesh_simplification;
+    const SMS::Edge_length_stop_predicate<double> stop(in.coarsen_below);
+    const SMS::Constrained_placement<SMS::Midpoint_placement<Mesh>, decltype(econ)> placement(econ);
+    SMS::edge_collapse(mesh, stop,
+                       CGAL::parameters::get_cost(SMS::Edge_length_cost<Mesh>())
+                           .get_placement(placement)
+                           .edge_is_constrained_map(econ));
+    for (VI v : mesh.vertices())
+      if (!mesh.is_border(v) && !on_polyline(v)) mesh.point(v) = project(v);
+  }
 
   for (const RemeshBand& band : in.bands) {
     std::vector<FI> range;

@@ -26,6 +26,12 @@ struct CgalRemeshInput {
   std::vector<std::pair<int, int>> constrained_edges;  ///< kept as polylines
   std::vector<bool> constrained_vertices;              ///< per vertex: never moved nor removed
   std::vector<bool> removed_boundary_vertices;  ///< per vertex: collapsed along the boundary first
+  /// Before remeshing, an input much finer than the target is first coarsened by shortest-edge
+  /// collapses (CGAL's Surface_mesh_simplification, midpoint placement, constrained edges and
+  /// open boundaries kept) until no edge is shorter than this (mm), and its vertices projected
+  /// back; the remesher then has far fewer collapses to make, and still projects onto the full
+  /// input. Every face must then be in `region` and no vertex fixed. 0: off.
+  double coarsen_below = 0.0;
   /// After remeshing, a face whose centroid or an edge midpoint lies farther than this (mm)
   /// from the input surface has its longest edge split at the projected midpoint, if that
   /// edge is longer than 2/3 of the (last band's) target (on the open boundary: longer than

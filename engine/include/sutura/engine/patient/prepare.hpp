@@ -12,6 +12,7 @@
 //   6. measurement of the result: quality, and the Hausdorff distance to the input.
 // Method, limits and validation: docs/patient-data.md.
 #include <cstddef>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,6 +93,9 @@ struct PrepareResult {
   /// Result (a) against the input surface (b) without its caps: a_to_b is how far the prepared
   /// surface strays from the segmentation.
   HausdorffDistance to_input;
+  /// Wall-clock seconds of each step, in order ("components", "self_intersections", "ends",
+  /// "smoothing", "remeshing", "measuring"); the only part of the result that varies by run.
+  std::vector<std::pair<std::string, double>> step_seconds;
 };
 
 /// Prepares `input` (welded; any orientation). Throws PrepareError (kinds above) and
