@@ -1,0 +1,50 @@
+// Patient data (issue 23): `prepare_vessel` of the synthetic segmentation export of the
+// bundled arch (the fine arch closed by flat caps, subdivided, noise of 7 % of its edge along
+// the normals), at about 78k faces (mean edge 0.25 mm, as `generate arch --as-segmentation`
+// writes it) and about 1.24M faces (0.065 mm; the target: at most 30 s and 4 GB). The input
+// is built once, outside the timing; loading the STL is not timed (docs/performance.md gives
+// the whole command, load included, with its peak memory).
+// Run: build/tests/bench/bench_prepare --benchmark_repetitions=3   (record the medians in
+// docs/performance.md)
+#include <benchmark/benchmark.h>
+
+#include "sutura/engine/anatomy/aortic_arch.hpp"
+#include "sutura/engine/anatomy/segmentation_export.hpp"
+#include "sutura/engine/patient/prepare.hpp"
+
+using namespace sutura::engine;
+
+namespace {
+
+const SurfaceMesh& fine_arch() {
+  static const SurfaceMesh aorta = [] {
+    ArchParams p;
+    p.target_edge_length = kArchFineEdgeLength;
+    return generate_arch(p).aorta;
+  }();
+  return aorta;
+}
+
+// Arg: the export's largest mean edge in micrometres (300: ~78k faces; 100: ~1.24M faces).
+void BM_Prepare(benchmark::State& state) {
+  SegmentationLikeParams sp;
+  sp.max_edge_length = static_cast<double>(state.range(0)) * 1e-3;
+  sp.noise = 0.07 * sp.max_edge_length;
+  const SurfaceMesh input = segmentation_like(fine_arch(), sp);
+  PrepareResult result;
+  for (auto _ : state) {
+    result = prepare_vessel(input);
+    benchmark::DoNotOptimize(result.vessel.num_faces());
+  }
+  state.counters["input_faces"] = static_cast<double>(input.num_faces());
+  state.counters["output_faces"] = static_cast<double>(result.vessel.num_faces());
+  state.counters["min_angle_deg"] = result.min_angle_deg;
+  state.counters["hausdorff_pct_of_edge"] = 100.0 * result.to_input.symmetric / result.edge_length;
+  for (const auto& [step, seconds] : result.step_seconds) state.counters[step + "_s"] = seconds;
+}
+
+}  // namespace
+
+BENCHMARK(BM_Prepare)->Arg(300)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();
