@@ -24,7 +24,7 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   prepare->add_option("-o,--out", o.out_dir, "Output directory (created if missing)")->required();
   prepare->add_option("--edge-length", o.params.edge_length,
                       "Target edge length in mm (default: 16 edges around the narrowest end; "
-                      "allowed: 6 to 64)");
+                      "allowed: from 64 to 6 edges around it)");
   prepare->add_flag("--keep-caps", o.params.keep_caps,
                     "Find the flat end caps and report them, but keep them closed");
   prepare->add_option("--smoothing", o.params.smoothing_iterations,
@@ -37,7 +37,7 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   prepare->add_option("--max-input-faces", o.max_input_faces,
                       "Most triangles of the input file (refused before it is read)")
       ->capture_default_str()
-      ->check(CLI::Range(std::size_t(1), std::size_t(50'000'000)));
+      ->check(CLI::Range(std::size_t(1), engine::kMaxPrepareInputFaces));
   prepare->add_flag("-q,--quiet", o.quiet, "No summary on stderr");
   return prepare;
 }
@@ -77,6 +77,7 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
           {"min_angle_deg", r.min_angle_deg},
           {"smoothing_iterations", o.params.smoothing_iterations},
           {"hausdorff_to_input", hausdorff_json(r.to_input)},
+          {"hausdorff_spacing_mm", r.hausdorff_spacing},
           {"seconds", seconds},
           {"step_seconds", steps}};
 }
@@ -97,6 +98,9 @@ int run_prepare(const PrepareOptions& o) {
   const engine::PrepareResult result = engine::prepare_vessel(input, o.params);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fs::create_directories(dir);
+  // An earlier report goes first, so that a failure leaves no report beside a vessel it does
+  // not describe.
+  fs::remove(report_file);
   engine::save_mesh(result.vessel, vessel_file);
   engine::write_file_atomically(report_file, prepare_json(result, o, seconds).dump(2) + "\n");
   if (!o.quiet) {

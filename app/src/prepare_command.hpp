@@ -16,7 +16,8 @@ struct PrepareOptions {
   std::string input;
   std::string out_dir;
   engine::PrepareParams params;
-  std::size_t max_input_faces = 4'000'000;  ///< refused before parsing beyond this
+  std::size_t max_input_faces = 4'000'000;  ///< refused before parsing beyond this (at most
+                                            ///< engine::kMaxPrepareInputFaces)
   bool quiet = false;
 };
 

@@ -269,6 +269,11 @@ double smallest_angle_deg(const SurfaceMesh& mesh) {
 
 PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& params) {
   if (input.empty()) throw InvalidArgument("prepare: the surface has no faces");
+  if (input.num_faces() > kMaxPrepareInputFaces)
+    throw PrepareError(PrepareError::Kind::TooLarge,
+                       "prepare: the surface has " + std::to_string(input.num_faces()) +
+                           " faces, more than the " + std::to_string(kMaxPrepareInputFaces) +
+                           " prepare takes; export the segmentation coarser");
   if (params.edge_length && !(*params.edge_length > 0.0 && std::isfinite(*params.edge_length)))
     throw PrepareError(PrepareError::Kind::EdgeLength,
                        "prepare: the edge length must be a positive number of mm, not " +
@@ -474,13 +479,18 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   in.bands = {{h, -1.0}};
   in.iterations = params.remesh_iterations;
   in.constrained_edges = rim_edges;
-  // A twenty-fifth of the target: with the noise and the smoothing's bounded moves, the
-  // distance to the input stays below a tenth of it.
+  // 3 % of the target: with the noise and the smoothing's bounded moves, the distance to the
+  // input stays below a tenth of it.
   in.max_deviation = 0.03 * h;
   in.repair_below_deg = 27.0;
   in.coarsen_below = 0.5 * h;
   detail::CgalRemeshOutput out = detail::cgal_remesh(in);
   result.vessel = SurfaceMesh(std::move(out.positions), std::move(out.faces));
+  if (result.vessel.num_faces() > params.max_faces)
+    throw PrepareError(PrepareError::Kind::TooLarge,
+                       "prepare: the remeshed vessel has " + std::to_string(result.vessel.num_faces()) +
+                           " faces (finer where the wall bends fast), more than the " +
+                           std::to_string(params.max_faces) + " allowed; give a longer --edge-length");
 
   step_done("remeshing");
   // The ends as the remeshed loops show them: each end takes the loop nearest its centre.
@@ -515,8 +525,25 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   result.min_edge = lo;
   result.max_edge = hi;
   result.mean_edge = sum / static_cast<double>(edges.size());
-  // Samples h / 5 apart: the one-sided maxima are short of the true ones by at most that.
-  result.to_input = hausdorff_distance(result.vessel, reference, h / 5.0);
+  // Samples h / 5 apart (the one-sided maxima are short of the true ones by at most that),
+  // wider where the samples would pass 16M: each face takes (n + 1)(n + 2) / 2 for n =
+  // ceil(longest edge / spacing), and an input face smaller than the spacing 3.
+  const auto samples = [&](double spacing) {
+    double total = 0.0;
+    for (const SurfaceMesh* m : {static_cast<const SurfaceMesh*>(&result.vessel), &reference})
+      for (const FaceIndices& f : m->faces()) {
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k)
+          longest = std::max(longest, (m->positions()[f[k]] - m->positions()[f[(k + 1) % 3]]).norm());
+        const double n = std::max(1.0, std::ceil(longest / spacing));
+        total += 0.5 * (n + 1.0) * (n + 2.0);
+      }
+    return total;
+  };
+  result.hausdorff_spacing = h / 5.0;
+  for (int widen = 0; widen < 20 && samples(result.hausdorff_spacing) > 1.6e7; ++widen)
+    result.hausdorff_spacing *= 1.5;
+  result.to_input = hausdorff_distance(result.vessel, reference, result.hausdorff_spacing);
   step_done("measuring");
   return result;
 }

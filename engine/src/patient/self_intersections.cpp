@@ -31,6 +31,7 @@ std::vector<std::pair<FaceId, FaceId>> self_intersections(const SurfaceMesh& mes
   out.reserve(pairs.size());
   for (const auto& [a, b] : pairs) {
     const auto i = static_cast<int>(a.idx()), j = static_cast<int>(b.idx());
+    if (i == j) continue;  // CGAL reports a face of zero area as a pair with itself
     out.emplace_back(FaceId(std::min(i, j)), FaceId(std::max(i, j)));
   }
   std::sort(out.begin(), out.end(), [](const auto& p, const auto& q) {

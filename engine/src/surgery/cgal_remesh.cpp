@@ -474,9 +474,10 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
           const double l = (p[j] - p[(j + 2) % 3]).norm();
           if (l > longest_length) longest_length = l, longest = j;
         }
-        if (longest_length <= (mesh.is_border(mesh.edge(hs[longest])) ? shortest_border_split : shortest_split))
+        if (longest < 0 ||
+            longest_length <= (mesh.is_border(mesh.edge(hs[longest])) ? shortest_border_split : shortest_split))
           continue;
-        if (longest >= 0) split.push_back(mesh.edge(hs[longest]));
+        split.push_back(mesh.edge(hs[longest]));
       }
       std::sort(split.begin(), split.end());
       split.erase(std::unique(split.begin(), split.end()), split.end());

@@ -38,14 +38,14 @@ struct CgalRemeshInput {
   /// the target) (rounds of splits and Delaunay
   /// flips, at most 6): curvature the target length cannot follow gets finer faces, down to
   /// a third of the target. 0: off (the surgical bands). Every face must then be in `region`.
-  double max_deviation = 0.0;
+  double max_deviation = 0.0;  ///< needs a band (its target sets the split floor)
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
   /// and the faces around their corners get CGAL's angle smoothing (open boundaries, polylines
   /// and fixed vertices held, the others projected back), Delaunay flips, and the needle
   /// collapses of the bands with this angle as their goal; 6 rounds at most.
   /// 0: off.
-  double repair_below_deg = 0.0;
+  double repair_below_deg = 0.0;  ///< needs a band (its target sets "short")
 };
 
 /// Where an output point lies on the input surface.

@@ -43,6 +43,9 @@ class PrepareError : public Error {
   Kind kind_;
 };
 
+/// The most faces prepare_vessel takes (its distance measurement samples every input face).
+inline constexpr std::size_t kMaxPrepareInputFaces = 5'000'000;
+
 struct PrepareParams {
   /// Target edge length of the result, mm. Default: 2 pi r / 16 for the smallest end radius r
   /// (16 edges around the narrowest end). Allowed: 6 to 64 edges around that end.
@@ -61,7 +64,9 @@ struct PrepareParams {
   double drop_area_fraction = 0.05;
   /// Faces meeting at more than this dihedral angle (degrees) bound a cap.
   double crease_angle_deg = 45.0;
-  /// The most faces the result may hold.
+  /// The most faces the result may hold: a target that would exceed it (estimated from the
+  /// area) is refused before remeshing, and a result that does (the curvature refinement adds
+  /// faces) after it.
   std::size_t max_faces = 2'000'000;
 };
 
@@ -93,19 +98,22 @@ struct PrepareResult {
   /// Result (a) against the input surface (b) without its caps: a_to_b is how far the prepared
   /// surface strays from the segmentation.
   HausdorffDistance to_input;
+  double hausdorff_spacing = 0.0;  ///< mm between its samples: a fifth of the target, or more
+                                   ///< for a result so large that the samples would pass 16M
   /// Wall-clock seconds of each step, in order ("components", "self_intersections", "ends",
   /// "smoothing", "remeshing", "measuring"); the only part of the result that varies by run.
   std::vector<std::pair<std::string, double>> step_seconds;
 };
 
-/// Prepares `input` (welded; any orientation). Throws PrepareError (kinds above) and
-/// InvalidArgument for parameters out of range. Cost: O(F log F) for the input's F faces plus
+/// Prepares `input` (welded; any orientation; at most kMaxPrepareInputFaces faces). Throws
+/// PrepareError (kinds above) and InvalidArgument for parameters out of range. Cost: O(F log F) for the input's F faces plus
 /// the remeshing, O(F_out * iterations * log F).
 PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& params = {});
 
-/// Self-intersections of a surface: pairs of faces that cross (not just touch along a shared
-/// edge or vertex), at most `max_pairs` of them (0: all). Uses CGAL's box-intersection filter.
-/// Cost O(F log F + k).
+/// Self-intersections of a surface: pairs of distinct faces that meet other than along the
+/// edge or vertex they share (crossing, or touching where they share nothing), at most about
+/// `max_pairs` of them (0: all), sorted. Faces of zero area are not reported. CGAL's
+/// `self_intersections` with its box-intersection filter. Cost O(F log F + k).
 std::vector<std::pair<FaceId, FaceId>> self_intersections(const SurfaceMesh& mesh,
                                                           std::size_t max_pairs);
 
