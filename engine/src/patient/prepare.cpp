@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "../surgery/cgal_remesh.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::engine {
 namespace {
@@ -252,17 +253,6 @@ void taubin_smooth(std::vector<Vec3>& x, const SurfaceMesh& mesh, const std::vec
       }
       x.swap(next);
     }
-}
-
-double smallest_angle_deg(const SurfaceMesh& mesh) {
-  double lo = 180.0;
-  for (const FaceIndices& f : mesh.faces())
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = mesh.positions()[f[k]];
-      const Vec3 a = mesh.positions()[f[(k + 1) % 3]] - p, b = mesh.positions()[f[(k + 2) % 3]] - p;
-      lo = std::min(lo, std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi);
-    }
-  return lo;
 }
 
 }  // namespace
@@ -512,19 +502,11 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   result.ends = std::move(ends);
 
   // 6. Quality and distance to the input.
-  result.min_angle_deg = smallest_angle_deg(result.vessel);
-  double lo = std::numeric_limits<double>::infinity(), hi = 0.0, sum = 0.0;
-  const auto edges = result.vessel.edges();
-  for (const HalfedgeId e : edges) {
-    const double l = (result.vessel.position(result.vessel.to_vertex(e)) -
-                      result.vessel.position(result.vessel.from_vertex(e))).norm();
-    lo = std::min(lo, l);
-    hi = std::max(hi, l);
-    sum += l;
-  }
-  result.min_edge = lo;
-  result.max_edge = hi;
-  result.mean_edge = sum / static_cast<double>(edges.size());
+  const MeshQuality quality = mesh_quality(result.vessel, {});
+  result.min_angle_deg = quality.min_angle_deg;
+  result.min_edge = quality.min_edge;
+  result.max_edge = quality.max_edge;
+  result.mean_edge = result.vessel.mean_edge_length();
   // Samples h / 5 apart (the one-sided maxima are short of the true ones by at most that),
   // wider where the samples would pass 16M: each face takes (n + 1)(n + 2) / 2 for n =
   // ceil(longest edge / spacing), and an input face smaller than the spacing 3.
