@@ -13,13 +13,25 @@ namespace {
 
 nlohmann::json vec(const engine::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+// centreline.json: the tree as extract_centreline gives it (points and radii in mm, edges as
+// point index pairs, each end's point by name).
+nlohmann::json centreline_json(const engine::CentrelineTree& t, const engine::PrepareResult& r) {
+  nlohmann::json points = nlohmann::json::array(), edges = nlohmann::json::array(), ends = nlohmann::json::array();
+  for (const auto& p : t.points) points.push_back(vec(p));
+  for (const auto& [a, b] : t.edges) edges.push_back({a, b});
+  for (std::size_t e = 0; e < t.end_nodes.size(); ++e) ends.push_back({{"name", r.ends[e].end.name}, {"point", t.end_nodes[e]}});
+  return {{"format", "sutura-centreline"}, {"version", 1},        {"units", "mm"},
+          {"points", points},              {"radii", t.radii},    {"edges", edges},
+          {"branch_points", t.branch_points}, {"ends", ends}};
+}
+
 }  // namespace
 
 CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   auto* prepare = app.add_subcommand(
       "prepare", "Turn a segmentation export (closed, dense STL/OBJ/PLY with flat end caps) into a "
-                 "vessel to plan on: opens the caps, smooths, remeshes; writes vessel.ply and "
-                 "prepare.json into --out");
+                 "vessel to plan on: opens the caps, smooths, remeshes; writes vessel.ply, "
+                 "centreline.json (not with --keep-caps) and prepare.json into --out");
   prepare->add_option("input", o.input, "Mesh file from the segmentation tool")->required();
   prepare->add_option("-o,--out", o.out_dir, "Output directory (created if missing)")->required();
   prepare->add_option("--edge-length", o.params.edge_length,
@@ -42,7 +54,8 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   return prepare;
 }
 
-nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions& o, double seconds) {
+nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions& o, double seconds,
+                            const std::optional<engine::CentrelineTree>& centreline, double centreline_seconds) {
   nlohmann::json ends = nlohmann::json::array();
   for (const auto& e : r.ends)
     ends.push_back({{"name", e.end.name},
@@ -78,6 +91,11 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
           {"smoothing_iterations", o.params.smoothing_iterations},
           {"hausdorff_to_input", hausdorff_json(r.to_input)},
           {"hausdorff_spacing_mm", r.hausdorff_spacing},
+          {"centreline", centreline ? nlohmann::json{{"file", "centreline.json"},
+                                                     {"points", centreline->points.size()},
+                                                     {"branch_points", centreline->branch_points.size()},
+                                                     {"seconds", centreline_seconds}}
+                                    : nlohmann::json(nullptr)},
           {"seconds", seconds},
           {"step_seconds", steps}};
 }
@@ -85,9 +103,10 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
 int run_prepare(const PrepareOptions& o) {
   namespace fs = std::filesystem;
   const fs::path dir(o.out_dir);
-  const fs::path vessel_file = dir / "vessel.ply", report_file = dir / "prepare.json";
+  const fs::path vessel_file = dir / "vessel.ply", report_file = dir / "prepare.json",
+                 centreline_file = dir / "centreline.json";
   std::error_code ec;
-  for (const auto& out : {vessel_file, report_file})
+  for (const auto& out : {vessel_file, report_file, centreline_file})
     if (fs::exists(out, ec) && fs::equivalent(out, o.input, ec))
       throw engine::InvalidArgument("prepare: " + out.string() +
                                     " is the input file; choose another --out directory");
@@ -96,13 +115,26 @@ int run_prepare(const PrepareOptions& o) {
   io.max_faces = o.max_input_faces;
   const engine::SurfaceMesh input = engine::load_mesh(o.input, io);
   const engine::PrepareResult result = engine::prepare_vessel(input, o.params);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The automatic centreline runs between open ends: none with --keep-caps.
+  std::optional<engine::CentrelineTree> centreline;
+  const auto centreline_start = std::chrono::steady_clock::now();
+  if (!o.params.keep_caps) {
+    std::vector<engine::VesselEnd> ends;
+    for (const auto& e : result.ends) ends.push_back(e.end);
+    centreline = engine::extract_centreline(result.vessel, ends);
+  }
+  const auto end = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(end - start).count();
+  const double centreline_seconds = std::chrono::duration<double>(end - centreline_start).count();
   fs::create_directories(dir);
   // An earlier report goes first, so that a failure leaves no report beside a vessel it does
-  // not describe.
+  // not describe; an earlier centreline too.
   fs::remove(report_file);
+  fs::remove(centreline_file);
   engine::save_mesh(result.vessel, vessel_file);
-  engine::write_file_atomically(report_file, prepare_json(result, o, seconds).dump(2) + "\n");
+  if (centreline) engine::write_file_atomically(centreline_file, centreline_json(*centreline, result).dump(1) + "\n");
+  engine::write_file_atomically(report_file,
+                                prepare_json(result, o, seconds, centreline, centreline_seconds).dump(2) + "\n");
   if (!o.quiet) {
     std::cerr << "sutura: " << o.input << ": " << result.input_faces << " faces in, "
               << result.vessel.num_faces() << " out (edge " << result.edge_length << " mm, min angle "

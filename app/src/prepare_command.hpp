@@ -1,13 +1,16 @@
 #pragma once
 // `sutura prepare INPUT --out DIR`: a segmentation export (closed, dense, noisy STL with flat
-// end caps) becomes a vessel to plan on: DIR/vessel.ply and DIR/prepare.json. The steps and
-// their limits: engine/include/sutura/engine/patient/prepare.hpp, docs/patient-data.md.
+// end caps) becomes a vessel to plan on: DIR/vessel.ply, DIR/centreline.json (the automatic
+// centreline; not with --keep-caps, which leaves no open end to run between) and
+// DIR/prepare.json. The steps and their limits: engine/include/sutura/engine/patient/
+// prepare.hpp, engine/include/sutura/engine/measure/centreline.hpp, docs/patient-data.md.
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/patient/prepare.hpp"
 
 namespace sutura::app {
@@ -25,9 +28,11 @@ struct PrepareOptions {
 CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& options);
 
 /// prepare.json content: format header, input and result counts, the ends, the dropped
-/// components, quality and the Hausdorff distance to the input.
+/// components, quality, the Hausdorff distance to the input and the centreline's summary
+/// (null when none was extracted).
 nlohmann::json prepare_json(const engine::PrepareResult& result, const PrepareOptions& options,
-                            double seconds);
+                            double seconds, const std::optional<engine::CentrelineTree>& centreline,
+                            double centreline_seconds);
 
 /// Loads, prepares and writes (each file atomically; the input is never overwritten). Throws
 /// engine::MeshIoError, engine::PrepareError or engine::InvalidArgument with a message that

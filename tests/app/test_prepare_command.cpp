@@ -68,10 +68,22 @@ TEST_F(PrepareCommand, WritesTheVesselAndItsReport) {
   const auto vessel = sutura::engine::load_mesh(out / "vessel.ply");
   EXPECT_EQ(vessel.boundary_loops().size(), 5u);
   EXPECT_EQ(report["output"]["faces"].get<std::size_t>(), vessel.num_faces());
+  // The automatic centreline: one tree point per end, at the end's centre, three branch points.
+  const auto centreline = nlohmann::json::parse(read_text(out / "centreline.json"));
+  EXPECT_EQ(centreline["format"], "sutura-centreline");
+  EXPECT_EQ(report["centreline"]["file"], "centreline.json");
+  EXPECT_EQ(centreline["branch_points"].size(), 3u);
+  EXPECT_EQ(centreline["points"].size(), centreline["radii"].size());
+  ASSERT_EQ(centreline["ends"].size(), 5u);
+  for (std::size_t e = 0; e < 5; ++e) {
+    EXPECT_EQ(centreline["ends"][e]["name"], report["ends"][e]["name"]);
+    EXPECT_EQ(centreline["points"][centreline["ends"][e]["point"].get<std::size_t>()], report["ends"][e]["centre"]);
+  }
   // The same input gives the same bytes.
   const fs::path again = export_dir() / "again";
   ASSERT_EQ(run_sutura("prepare -q " + input.string() + " --out " + again.string(), &err), 0) << err;
   EXPECT_EQ(read_text(out / "vessel.ply"), read_text(again / "vessel.ply"));
+  EXPECT_EQ(read_text(out / "centreline.json"), read_text(again / "centreline.json"));
 }
 
 TEST_F(PrepareCommand, NeverOverwritesItsInput) {

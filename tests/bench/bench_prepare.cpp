@@ -4,12 +4,15 @@
 // writes it) and about 1.24M faces (0.065 mm; the target: at most 30 s and 4 GB). The input
 // is built once, outside the timing; loading the STL is not timed (docs/performance.md gives
 // the whole command, load included, with its peak memory).
+// Also `extract_centreline` (the automatic centreline; target: at most 2 s at 20k faces) on
+// the fine arch (19k faces) and on the prepared 78k-face export (17k faces).
 // Run: build/tests/bench/bench_prepare --benchmark_repetitions=3   (record the medians in
 // docs/performance.md)
 #include <benchmark/benchmark.h>
 
 #include "sutura/engine/anatomy/aortic_arch.hpp"
 #include "sutura/engine/anatomy/segmentation_export.hpp"
+#include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/patient/prepare.hpp"
 
 using namespace sutura::engine;
@@ -43,8 +46,35 @@ void BM_Prepare(benchmark::State& state) {
   for (const auto& [step, seconds] : result.step_seconds) state.counters[step + "_s"] = seconds;
 }
 
+// Arg 0: the fine arch with its generator's ends; 1: the prepared 78k-face export, ends as
+// prepare found them.
+void BM_Centreline(benchmark::State& state) {
+  ArchParams p;
+  p.target_edge_length = kArchFineEdgeLength;
+  ArchAnatomy arch = generate_arch(p);
+  SurfaceMesh vessel = arch.aorta;
+  std::vector<VesselEnd> ends = arch.landmarks.aorta_ends;
+  if (state.range(0) == 1) {
+    SegmentationLikeParams sp;
+    sp.noise = 0.07 * sp.max_edge_length;
+    PrepareResult prepared = prepare_vessel(segmentation_like(fine_arch(), sp));
+    vessel = std::move(prepared.vessel);
+    ends.clear();
+    for (const PreparedEnd& e : prepared.ends) ends.push_back(e.end);
+  }
+  CentrelineTree tree;
+  for (auto _ : state) {
+    tree = extract_centreline(vessel, ends);
+    benchmark::DoNotOptimize(tree.points.size());
+  }
+  state.counters["faces"] = static_cast<double>(vessel.num_faces());
+  state.counters["points"] = static_cast<double>(tree.points.size());
+  state.counters["branch_points"] = static_cast<double>(tree.branch_points.size());
+}
+
 }  // namespace
 
+BENCHMARK(BM_Centreline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Prepare)->Arg(300)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

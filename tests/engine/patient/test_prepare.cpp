@@ -9,6 +9,7 @@
 #include "sutura/engine/anatomy/aortic_arch.hpp"
 #include "sutura/engine/anatomy/segmentation_export.hpp"
 #include "sutura/engine/generators.hpp"
+#include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/patient/prepare.hpp"
 
 namespace sutura::engine {
@@ -121,6 +122,50 @@ TEST(Prepare, CappedArchFindsEveryEnd) {
       EXPECT_LE(r.ends[i].end.radius, r.ends[i - 1].end.radius);
     }
   }
+}
+
+// The automatic centreline of the prepared export (the ends as prepare found them) follows the
+// arch's analytic aortic centreline: within a tenth of the lumen radius away from the branch
+// junctions (3 aortic radii around each branch's origin), and its narrowest point is the
+// coarctation.
+TEST(Prepare, CentrelineOfThePreparedArch) {
+  const PrepareResult& r = prepared_arch();
+  std::vector<VesselEnd> ends;
+  for (const PreparedEnd& e : r.ends) ends.push_back(e.end);
+  const CentrelineTree t = extract_centreline(r.vessel, ends);
+  EXPECT_EQ(t.branch_points.size(), 3u);
+  const auto distance_to_tree = [&](const Vec3& p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [a, b] : t.edges) {
+      const Vec3 d = t.points[b] - t.points[a];
+      const double s = std::clamp((p - t.points[a]).dot(d) / d.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (p - (t.points[a] + s * d)).norm());
+    }
+    return best;
+  };
+  const Centreline* aorta = nullptr;
+  std::vector<Vec3> origins;
+  for (const Centreline& c : arch().landmarks.centrelines) {
+    if (c.name == "aorta") aorta = &c;
+    else if (c.name.find("pulmonary") == std::string::npos) origins.push_back(c.points.front());
+  }
+  ASSERT_NE(aorta, nullptr);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < aorta->points.size(); ++i) {
+    bool near_branch = false;
+    for (const Vec3& o : origins) near_branch |= (aorta->points[i] - o).norm() < 3.0 * aorta->radii[i];
+    if (!near_branch) worst = std::max(worst, distance_to_tree(aorta->points[i]) / aorta->radii[i]);
+  }
+  EXPECT_LT(worst, 0.1);
+  int narrowest = -1;
+  for (std::size_t v = 0; v < t.points.size(); ++v)
+    if ((t.points[v] - arch().landmarks.coarctation_centre).norm() < 5.0 &&
+        (narrowest < 0 || t.radii[v] < t.radii[static_cast<std::size_t>(narrowest)]))
+      narrowest = static_cast<int>(v);
+  ASSERT_GE(narrowest, 0);
+  EXPECT_LT((t.points[static_cast<std::size_t>(narrowest)] - arch().landmarks.coarctation_centre).norm(), 1.0);
+  EXPECT_NEAR(t.radii[static_cast<std::size_t>(narrowest)], arch().landmarks.coarctation_min_radius,
+              0.1 * arch().landmarks.coarctation_min_radius);
 }
 
 TEST(Prepare, RemeshedArchIsWellShaped) {
