@@ -13,6 +13,7 @@
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
+#include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/measure/lumen_profile.hpp"
 #include "sutura/engine/surgery/incise.hpp"
 #include "sutura/engine/surgery/join.hpp"
@@ -478,6 +479,51 @@ json Run::execute(const DistanceOp& op) {
   return {{"measurement", op.name}, {"values", j}};
 }
 
+namespace {
+
+// The automatic centreline of `mesh` between the tree points nearest op.from and op.to, as a
+// polyline; records its length and point count in `side` and, when op.stations is 0, sets one
+// station per mean edge length (at least 20). `from` and `to` must lie within three radii of
+// the tree (near the vessel).
+std::vector<engine::Vec3> auto_centreline_path(const MeasureOp& op, const engine::SurfaceMesh& mesh,
+                                               const char* side_name, engine::LumenProfileParams& p) {
+  const std::string where = "measure '" + op.name + "' (" + side_name + ", object '" + op.object + "'): ";
+  engine::CentrelineTree tree;
+  try {
+    tree = engine::extract_centreline(mesh);
+  } catch (const engine::InvalidArgument& e) {
+    throw std::runtime_error(where + e.what());
+  }
+  for (const auto& [field, point] : {std::pair{"from", op.from}, std::pair{"to", op.to}}) {
+    std::size_t nearest = 0;
+    for (std::size_t v = 1; v < tree.points.size(); ++v)
+      if ((tree.points[v] - point).norm() < (tree.points[nearest] - point).norm()) nearest = v;
+    const double d = (tree.points[nearest] - point).norm();
+    if (d > 3.0 * tree.radii[nearest]) {
+      std::ostringstream m;
+      m << where << "'" << field << "' is " << std::fixed << std::setprecision(2) << d
+        << " mm from the vessel's centreline, more than three lumen radii (" << 3.0 * tree.radii[nearest]
+        << " mm); give a point in or near the vessel";
+      throw std::runtime_error(m.str());
+    }
+  }
+  std::vector<engine::Vec3> path;
+  try {
+    path = engine::centreline_path(tree, op.from, op.to);
+  } catch (const engine::InvalidArgument& e) {
+    throw std::runtime_error(where + e.what());
+  }
+  double length = 0.0;
+  for (std::size_t k = 1; k < path.size(); ++k) length += (path[k] - path[k - 1]).norm();
+  if (p.stations == 0) {
+    const double edge = engine::mean_edge_length(mesh, {});
+    p.stations = static_cast<int>(std::clamp(std::round(length / edge), 20.0, 10000.0));
+  }
+  return path;
+}
+
+}  // namespace
+
 json Run::execute(const MeasureOp& op) {
   const SceneObject& obj = object(op.object);
   json j = {{"object", op.object}};
@@ -498,17 +544,26 @@ json Run::execute(const MeasureOp& op) {
       << before.equivalent_diameter << " -> " << after.equivalent_diameter << " mm";
     j["summary"] = m.str();
   } else {
-    engine::LumenProfileParams p;
-    p.stations = op.stations;
-    p.max_radius = radius;
     for (const auto* which : {&obj.before, &obj.mesh}) {
-      const engine::LumenProfile prof = engine::lumen_profile(*which, op.centreline, p);
+      const char* side_name = which == &obj.before ? "before" : "after";
+      std::vector<engine::Vec3> line = op.centreline;
+      engine::LumenProfileParams p;
+      p.stations = op.stations;
+      p.max_radius = radius;
+      json side;
+      if (op.auto_centreline) {
+        line = auto_centreline_path(op, *which, side_name, p);
+        double length = 0.0;
+        for (std::size_t k = 1; k < line.size(); ++k) length += (line[k] - line[k - 1]).norm();
+        side["centreline_length_mm"] = length;
+      }
+      const engine::LumenProfile prof = engine::lumen_profile(*which, line, p);
       json stations = json::array();
       for (const auto& s : prof.stations)
         stations.push_back({{"arc_length_mm", s.arc_length},
                             {"area_mm2", s.section ? json(s.section->area) : json(nullptr)},
                             {"closed", s.section ? s.section->closed : false}});
-      json side = {{"stations", stations}};
+      side["stations"] = stations;
       if (!prof.min_area_station)
         throw std::runtime_error("measure '" + op.name + "': no closed cross-section along the "
                                  "centreline of object '" + op.object + "'");
@@ -516,7 +571,8 @@ json Run::execute(const MeasureOp& op) {
       side["min_area_mm2"] = m.section->area;
       side["min_area_arc_length_mm"] = m.arc_length;
       side["min_equivalent_diameter_mm"] = m.section->equivalent_diameter;
-      j[which == &obj.before ? "before" : "after"] = side;
+      side["min_area_point"] = {m.section->centroid.x(), m.section->centroid.y(), m.section->centroid.z()};
+      j[side_name] = side;
     }
     const double b = j["before"]["min_area_mm2"].get<double>();
     const double a = j["after"]["min_area_mm2"].get<double>();
@@ -527,6 +583,11 @@ json Run::execute(const MeasureOp& op) {
       << std::setprecision(1) << j["min_area_change_percent"].get<double>() << std::noshowpos
       << " %), at " << j["after"]["min_area_arc_length_mm"].get<double>()
       << " mm along the centreline";
+    if (op.auto_centreline) {
+      const auto& c = j["after"]["min_area_point"];
+      m << " (" << c[0].get<double>() << ", " << c[1].get<double>() << ", " << c[2].get<double>()
+        << "; automatic centreline)";
+    }
     j["summary"] = m.str();
   }
   measurements[op.name] = j;

@@ -168,13 +168,20 @@ MeasureOp parse_measure(Fields& f) {
   op.object = object_name(f);
   op.name = f.required_string("name");
   if (f.has("plane") == f.has("centreline"))
-    f.fail("plane", "give either plane {origin, normal} or centreline [points]");
+    f.fail("plane", "give either plane {origin, normal} or centreline [points] or \"auto\"");
   if (auto p = f.optional_object("plane")) {
     engine::Plane plane;
     plane.origin = vec(p->required_vec3("origin"));
     plane.normal = nonzero_normal(*p, "normal");
     p->finish();
     op.plane = plane;
+  } else if (const auto* c = f.raw("centreline"); c->is_string()) {
+    if (c->get<std::string>() != "auto") f.fail("centreline", "must be \"auto\" or an array of [x, y, z] points");
+    op.auto_centreline = true;
+    op.from = vec(f.required_vec3("from"));
+    op.to = vec(f.required_vec3("to"));
+    if (op.from == op.to) f.fail("to", "must differ from 'from'");
+    op.stations = f.optional_int("stations", 0, 1, 10000);
   } else {
     op.centreline = points(f, "centreline");
     if (op.centreline.size() < 2) f.fail("centreline", "needs at least 2 points");

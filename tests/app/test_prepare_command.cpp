@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,47 @@ TEST_F(PrepareCommand, WritesTheVesselAndItsReport) {
   ASSERT_EQ(run_sutura("prepare -q " + input.string() + " --out " + again.string(), &err), 0) << err;
   EXPECT_EQ(read_text(out / "vessel.ply"), read_text(again / "vessel.ply"));
   EXPECT_EQ(read_text(out / "centreline.json"), read_text(again / "centreline.json"));
+}
+
+// The prepared export measured as a surgeon would: `measure` with the automatic centreline
+// from the ascending root to the descending end finds the narrowest lumen at the coarctation
+// (within 1 mm of the generator's coarctation centre).
+TEST_F(PrepareCommand, AutomaticCentrelineFindsTheCoarctation) {
+  const fs::path out = export_dir() / "measured";
+  std::string err;
+  ASSERT_EQ(run_sutura("prepare -q " + (export_dir() / "aorta_segmentation.stl").string() + " --out " + out.string(), &err), 0) << err;
+  const auto landmarks = nlohmann::json::parse(read_text(export_dir() / "landmarks.json"));
+  nlohmann::json root, descending;
+  for (const auto& e : landmarks["aorta"]["ends"]) {
+    if (e["name"] == "ascending_root") root = e["centre"];
+    if (e["name"] == "descending") descending = e["centre"];
+  }
+  ASSERT_FALSE(root.is_null());
+  ASSERT_FALSE(descending.is_null());
+  const nlohmann::json header = {{"format", "sutura-session"}, {"version", 3}, {"units", "mm"}};
+  const nlohmann::json load = {{"op", "load"}, {"object", "aorta"}, {"file", (out / "vessel.ply").string()}};
+  const nlohmann::json measure = {{"op", "measure"}, {"object", "aorta"}, {"name", "lumen"}, {"centreline", "auto"},
+                                  {"from", root}, {"to", descending}, {"max_radius", 6.0}};
+  const fs::path session = export_dir() / "measure.jsonl";
+  std::ofstream(session) << header.dump() << "\n" << load.dump() << "\n" << measure.dump() << "\n";
+  ASSERT_EQ(run_sutura("replay -q " + session.string() + " --out " + (export_dir() / "measure_out").string(), &err), 0) << err;
+  const auto report = nlohmann::json::parse(read_text(export_dir() / "measure_out" / "report.json"));
+  const auto& m = report["measurements"]["lumen"];
+  const auto& c = landmarks["coarctation"]["centre"];
+  for (const char* side : {"before", "after"}) {
+    const auto& p = m[side]["min_area_point"];
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) d2 += (p[i].get<double>() - c[i].get<double>()) * (p[i].get<double>() - c[i].get<double>());
+    EXPECT_LT(std::sqrt(d2), 1.0) << side << ": " << p;
+    EXPECT_GT(m[side]["stations"].size(), 20u);
+  }
+  // A point far from the vessel is refused with the measurement's name and how far it is.
+  const nlohmann::json far = {{"op", "measure"}, {"object", "aorta"}, {"name", "far"}, {"centreline", "auto"},
+                              {"from", {100.0, 0.0, 0.0}}, {"to", descending}};
+  std::ofstream(session) << header.dump() << "\n" << load.dump() << "\n" << far.dump() << "\n";
+  EXPECT_NE(run_sutura("replay -q " + session.string() + " --out " + (export_dir() / "far_out").string(), &err), 0);
+  EXPECT_NE(err.find("'from' is"), std::string::npos) << err;
+  EXPECT_NE(err.find("far"), std::string::npos) << err;
 }
 
 TEST_F(PrepareCommand, NeverOverwritesItsInput) {

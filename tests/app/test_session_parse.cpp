@@ -195,6 +195,17 @@ INSTANTIATE_TEST_SUITE_P(
                 2, "check_stability", "nonlinear"},
         BadCase{kHeader + "{\"op\": \"solve\", \"analysis\": \"linear\", \"minimize\": true}\n",
                 2, "minimize", "nonlinear"},
+        BadCase{kHeader + "{\"op\": \"measure\", \"object\": \"a\", \"name\": \"m\", \"centreline\": \"automatic\", "
+                          "\"from\": [0, 0, 0], \"to\": [0, 0, 1]}\n",
+                2, "centreline", "\"auto\" or an array"},
+        BadCase{kHeader + "{\"op\": \"measure\", \"object\": \"a\", \"name\": \"m\", \"centreline\": \"auto\", \"from\": [0, 0, 0]}\n",
+                2, "to", "missing"},
+        BadCase{kHeader + "{\"op\": \"measure\", \"object\": \"a\", \"name\": \"m\", \"centreline\": \"auto\", "
+                          "\"from\": [1, 2, 3], \"to\": [1, 2, 3]}\n",
+                2, "to", "differ"},
+        BadCase{kHeader + "{\"op\": \"measure\", \"object\": \"a\", \"name\": \"m\", \"centreline\": [[0, 0, 0], [0, 0, 1]], "
+                          "\"from\": [0, 0, 0]}\n",
+                2, "from", ""},
         BadCase{kHeader + "{\"op\": \"solve\", \"quasi_newton_steps\": 10}\n", 2,
                 "quasi_newton_steps", "only with"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"max_escapes\": -1}}\n", 2,

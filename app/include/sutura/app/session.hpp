@@ -318,6 +318,12 @@ struct MeasureOp {
   /// Or a lumen profile: `stations` planes perpendicular to this polyline; reports the
   /// minimum lumen area before and after.
   std::vector<engine::Vec3> centreline;
+  /// Or along the automatic centreline (engine::extract_centreline of each shape, its open
+  /// boundaries being the ends) between the points nearest `from` and `to`.
+  bool auto_centreline = false;
+  engine::Vec3 from = engine::Vec3::Zero(), to = engine::Vec3::Zero();
+  /// Sections along the centreline; 0 (only with the automatic one): one per mean edge length
+  /// of the shape, at least 20.
   int stations = 20;
   double max_radius = 0.0;  ///< mm; 0 = unlimited
 };
