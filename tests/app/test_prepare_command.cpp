@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sutura/engine/measure/hausdorff.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
 namespace fs = std::filesystem;
@@ -85,6 +86,20 @@ TEST_F(PrepareCommand, WritesTheVesselAndItsReport) {
   ASSERT_EQ(run_sutura("prepare -q " + input.string() + " --out " + again.string(), &err), 0) << err;
   EXPECT_EQ(read_text(out / "vessel.ply"), read_text(again / "vessel.ply"));
   EXPECT_EQ(read_text(out / "centreline.json"), read_text(again / "centreline.json"));
+  // The shipped prepared arch (assets/anatomy/segmentation, used by
+  // segmentation_patch_aortoplasty.jsonl) is this result: the same surface within 1 micrometre
+  // and the same centreline (a tolerance, not bytes, so that another compiler's last bits do
+  // not fail it; a changed generator or prepare does).
+  const fs::path shipped = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "segmentation";
+  const auto shipped_vessel = sutura::engine::load_mesh(shipped / "vessel.ply");
+  EXPECT_EQ(shipped_vessel.num_faces(), vessel.num_faces()) << "see assets/anatomy/README.md";
+  EXPECT_LT(sutura::engine::hausdorff_distance(shipped_vessel, vessel).symmetric, 1e-3) << "see assets/anatomy/README.md";
+  const auto shipped_centreline = nlohmann::json::parse(read_text(shipped / "centreline.json"));
+  ASSERT_EQ(shipped_centreline["points"].size(), centreline["points"].size()) << "see assets/anatomy/README.md";
+  EXPECT_EQ(shipped_centreline["edges"], centreline["edges"]);
+  for (std::size_t i = 0; i < centreline["points"].size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(shipped_centreline["points"][i][k].get<double>(), centreline["points"][i][k].get<double>(), 1e-3);
 }
 
 // The prepared export measured as a surgeon would: `measure` with the automatic centreline
