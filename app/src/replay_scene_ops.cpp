@@ -8,6 +8,7 @@
 #include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
+#include "sutura/engine/patient/prepare.hpp"
 
 namespace sutura::app::detail {
 
@@ -143,6 +144,8 @@ json Run::execute(const LoadOp& op) {
   for (const SceneObject& o : workspace.objects()) present += o.mesh.num_faces();
   const std::size_t room = l.faces_in_all > present ? l.faces_in_all - present : 0;
   io.max_faces = std::max<std::size_t>(1, std::min(l.faces_per_object, room));
+  // A segmentation export is far denser than what it becomes: its own limit is prepare's.
+  if (op.prepare) io.max_faces = engine::kMaxPrepareInputFaces;
   inputs.push_back(op.file);
   engine::SurfaceMesh mesh;
   try {
@@ -154,9 +157,32 @@ json Run::execute(const LoadOp& op) {
                                                          : " faces left of the limit of " + std::to_string(l.faces_in_all) +
                                                                " in all (--max-faces-in-all raises it)"));
   }
+  json prepared = nullptr;
+  if (op.prepare) {
+    engine::PrepareParams p;
+    p.edge_length = op.prepare->edge_length;
+    p.smoothing_iterations = op.prepare->smoothing;
+    p.max_faces = std::max<std::size_t>(1, std::min(l.faces_per_object, room));
+    engine::PrepareResult r = engine::prepare_vessel(mesh, p);
+    json ends = json::array();
+    for (const auto& e : r.ends)
+      ends.push_back({{"name", e.end.name},
+                      {"centre", {e.end.centre.x(), e.end.centre.y(), e.end.centre.z()}},
+                      {"radius", e.end.radius},
+                      {"from", e.was_cap ? "cap (opened)" : "open end"}});
+    prepared = {{"input_faces", r.input_faces},
+                {"ends", ends},
+                {"dropped_components", r.dropped.size()},
+                {"edge_length_mm", r.edge_length},
+                {"min_angle_deg", r.min_angle_deg},
+                {"hausdorff_to_input_mm", r.to_input.symmetric}};
+    mesh = std::move(r.vessel);
+  }
   const auto& obj = workspace.add(op.object, std::move(mesh));
-  return {{"object", op.object}, {"file", op.file.generic_string()},
-          {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};
+  json j = {{"object", op.object}, {"file", op.file.generic_string()},
+            {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};
+  if (op.prepare) j["prepared"] = prepared;
+  return j;
 }
 
 json Run::execute(const SnapshotOp& op) {

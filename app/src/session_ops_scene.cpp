@@ -63,6 +63,13 @@ LoadOp parse_load(Fields& f, const std::filesystem::path& session_file) {
   op.weld_tolerance = f.optional_number("weld_tolerance", op.weld_tolerance);
   if (op.weld_tolerance < 0.0 || op.weld_tolerance > 0.01)
     f.fail("weld_tolerance", "must be between 0 and 0.01 (fraction of the bounding-box diagonal)");
+  if (auto p = f.optional_object("prepare")) {
+    PrepareSpec spec;
+    if (p->has("edge_length")) spec.edge_length = p->optional_positive("edge_length", 1.0);
+    spec.smoothing = p->optional_int("smoothing", spec.smoothing, 0, 100);
+    p->finish();
+    op.prepare = spec;
+  }
   return op;
 }
 

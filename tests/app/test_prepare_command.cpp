@@ -143,6 +143,28 @@ TEST_F(PrepareCommand, AutomaticCentrelineFindsTheCoarctation) {
   EXPECT_NE(err.find("far"), std::string::npos) << err;
 }
 
+// A session's load with `prepare` (what the GUI's "Segmentation export: prepare it" records)
+// gives the vessel `sutura prepare` gives, and reports the ends it opened.
+TEST_F(PrepareCommand, ASessionLoadCanPrepare) {
+  const fs::path input = export_dir() / "aorta_segmentation.stl";
+  const fs::path cli = export_dir() / "cli";
+  std::string err;
+  ASSERT_EQ(run_sutura("prepare -q " + input.string() + " --out " + cli.string(), &err), 0) << err;
+  const fs::path session = export_dir() / "load_prepare.jsonl";
+  std::ofstream(session) << "{\"format\": \"sutura-session\", \"version\": 3, \"units\": \"mm\"}\n"
+                         << "{\"op\": \"load\", \"object\": \"aorta\", \"file\": \"" << input.string()
+                         << "\", \"prepare\": {\"smoothing\": 10}}\n"
+                         << "{\"op\": \"export\", \"object\": \"aorta\", \"file\": \"vessel.ply\"}\n";
+  const fs::path out = export_dir() / "load_prepare_out";
+  ASSERT_EQ(run_sutura("replay -q " + session.string() + " --out " + out.string(), &err), 0) << err;
+  EXPECT_EQ(read_text(out / "vessel.ply"), read_text(cli / "vessel.ply"));
+  const auto report = nlohmann::json::parse(read_text(out / "report.json"));
+  const auto& load = report["actions"][0];
+  EXPECT_EQ(load["op"], "load");
+  EXPECT_EQ(load["prepared"]["ends"].size(), 5u);
+  EXPECT_GE(load["prepared"]["min_angle_deg"].get<double>(), 25.0);
+}
+
 TEST_F(PrepareCommand, NeverOverwritesItsInput) {
   const fs::path dir = export_dir() / "own";
   fs::create_directories(dir);

@@ -206,6 +206,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"measure\", \"object\": \"a\", \"name\": \"m\", \"centreline\": [[0, 0, 0], [0, 0, 1]], "
                           "\"from\": [0, 0, 0]}\n",
                 2, "from", ""},
+        BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"x.stl\", \"prepare\": {\"smoothing\": 200}}\n",
+                2, "prepare.smoothing", "100"},
+        BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"x.stl\", \"prepare\": {\"edge_length\": -1}}\n",
+                2, "prepare.edge_length", "greater than 0"},
+        BadCase{kHeader + "{\"op\": \"load\", \"object\": \"a\", \"file\": \"x.stl\", \"prepare\": {\"keep\": 1}}\n",
+                2, "prepare.keep", ""},
         BadCase{kHeader + "{\"op\": \"solve\", \"quasi_newton_steps\": 10}\n", 2,
                 "quasi_newton_steps", "only with"},
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"max_escapes\": -1}}\n", 2,

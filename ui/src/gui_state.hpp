@@ -117,6 +117,9 @@ struct GuiState {
 
   // Plan: opening and generating.
   char open_path[512] = "";
+  /// Open the file as a segmentation export (the load's `prepare`): caps opened, remeshed.
+  bool open_prepare = false;
+  float prepare_edge_length = 0.0f;  ///< mm; 0: 16 edges around the narrowest end
   std::string browse_dir;
   char new_object[64] = "a";
 

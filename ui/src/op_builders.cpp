@@ -12,8 +12,14 @@ json generate_op(const std::string& object, const std::string& shape, const json
   return op;
 }
 
-json load_op(const std::string& object, const std::string& absolute_file) {
-  return {{"op", "load"}, {"object", object}, {"file", absolute_file}};
+json load_op(const std::string& object, const std::string& absolute_file, bool prepare,
+             double prepare_edge_length) {
+  json op = {{"op", "load"}, {"object", object}, {"file", absolute_file}};
+  if (prepare) {
+    op["prepare"] = {{"smoothing", 10}};
+    if (prepare_edge_length > 0.0) op["prepare"]["edge_length"] = prepare_edge_length;
+  }
+  return op;
 }
 
 json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,

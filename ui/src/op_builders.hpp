@@ -16,8 +16,11 @@ nlohmann::json point_json(const engine::Vec3& p);
 /// {"op": "generate", "object", "shape", ...extra}; extra holds shape parameters.
 nlohmann::json generate_op(const std::string& object, const std::string& shape,
                            const nlohmann::json& extra = nlohmann::json::object());
-/// {"op": "load", "object", "file"} with an absolute file path.
-nlohmann::json load_op(const std::string& object, const std::string& absolute_file);
+/// {"op": "load", "object", "file"} with an absolute file path; with `prepare`, the file is a
+/// segmentation export prepared as it loads ({"prepare": {"smoothing": 10[, "edge_length"]}},
+/// edge_length only when > 0).
+nlohmann::json load_op(const std::string& object, const std::string& absolute_file, bool prepare = false,
+                       double prepare_edge_length = 0.0);
 nlohmann::json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
                            double thickness);
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the

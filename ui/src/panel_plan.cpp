@@ -66,9 +66,21 @@ void open_controls(GuiState& s) {
     }
     ImGui::EndPopup();
   }
+  noted_checkbox(s.widgets, "Segmentation export: prepare it", &s.open_prepare);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("A closed CT/MRI segmentation (flat end caps, dense, noisy): open the caps as "
+                      "named ends, keep the largest part, smooth and remesh as it loads (the same "
+                      "as `sutura prepare`).");
+  if (s.open_prepare) {
+    ImGui::SetNextItemWidth(90);
+    ImGui::InputFloat("target edge, mm (0: auto)", &s.prepare_edge_length, 0.0f, 0.0f, "%.2f");
+    s.widgets.note("prepare edge length");
+    s.prepare_edge_length = std::max(0.0f, s.prepare_edge_length);
+  }
   if (gated_button(s.widgets, "Open mesh", why))
-    s.perform(load_op(s.new_object, fs::absolute(s.open_path).lexically_normal().string()),
-              "Loaded " + std::string(s.open_path));
+    s.perform(load_op(s.new_object, fs::absolute(s.open_path).lexically_normal().string(), s.open_prepare,
+                      static_cast<double>(s.prepare_edge_length)),
+              (s.open_prepare ? "Prepared " : "Loaded ") + std::string(s.open_path));
   ImGui::SameLine();
   if (gated_button(s.widgets, "Tube", why, "A generated vessel segment (radius 4 mm, 30 mm long)."))
     s.perform(generate_op(s.new_object, "tube", {{"radius", 4.0}, {"length", 30.0}}));

@@ -76,10 +76,20 @@ struct GenerateOp {
 };
 
 /// Loads an object from a mesh file (path relative to the session file).
+/// A load's `prepare`: the file is a segmentation export, made a vessel to plan on as it is
+/// loaded (engine::prepare_vessel: caps opened as ends, smoothed, remeshed; the same as
+/// `sutura prepare`). The session's own defaults, written out so that a recording keeps its
+/// meaning when the engine's change.
+struct PrepareSpec {
+  std::optional<double> edge_length;  ///< mm; none: 16 edges around the narrowest end
+  int smoothing = 10;                 ///< Taubin iterations, 0 to 100
+};
+
 struct LoadOp {
   std::string object;
   std::filesystem::path file;  ///< resolved against the session file's directory
   double weld_tolerance = 1e-6;
+  std::optional<PrepareSpec> prepare;
 };
 
 /// Camera of a snapshot: explicit eye/target/up, or a view direction fitted to the objects.
