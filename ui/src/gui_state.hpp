@@ -109,6 +109,10 @@ struct GuiState {
   std::optional<engine::Vec3> plane_origin;
   int plane_axis = 2;  ///< 0 x, 1 y, 2 z: normal of the cross-section plane
   nlohmann::json last_measure;
+  /// Lumen profile: the open ends (boundary loops of the selected object, in loop order) it
+  /// runs between, and the last profile's report details (null: none yet).
+  int profile_from = 0, profile_to = 1;
+  nlohmann::json last_profile;
   /// The last finished run's `equilibrium` report (null: none checked, e.g. plain dynamics).
   nlohmann::json last_equilibrium;
   int measure_count = 0;

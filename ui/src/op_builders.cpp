@@ -89,6 +89,12 @@ json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
   return op;
 }
 
+json lumen_profile_op(const std::string& object, const std::string& name, const engine::Vec3& from,
+                      const engine::Vec3& to) {
+  return {{"op", "measure"}, {"object", object}, {"name", name}, {"centreline", "auto"},
+          {"from", point_json(from)}, {"to", point_json(to)}};
+}
+
 json measure_op(const std::string& object, const std::string& name, const engine::Vec3& origin,
                 const engine::Vec3& normal) {
   return {{"op", "measure"}, {"object", object}, {"name", name},

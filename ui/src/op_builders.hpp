@@ -49,6 +49,10 @@ nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Ve
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);
 /// Cross-section of `object` by a plane, reported under `name`.
+/// {"op": "measure", "centreline": "auto", "from", "to"}: the lumen profile along the automatic
+/// centreline between the points nearest `from` and `to` (e.g. two open ends' centres).
+nlohmann::json lumen_profile_op(const std::string& object, const std::string& name, const engine::Vec3& from,
+                                const engine::Vec3& to);
 nlohmann::json measure_op(const std::string& object, const std::string& name,
                           const engine::Vec3& origin, const engine::Vec3& normal);
 nlohmann::json snapshot_op(const std::string& file, int width, int height, bool side_by_side,

@@ -1,7 +1,9 @@
 // The Inspect section: before/after, colour maps, cross-section, snapshot, export, continue.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "panels.hpp"
 
@@ -82,6 +84,108 @@ void cross_section_controls(GuiState& s) {
   if (!s.last_measure.is_null()) measurement_table(s.last_measure);
 }
 
+// The lumen area along the automatic centreline, before (blue) and after (orange) in one
+// frame on one scale from zero, each station at its arc length, the narrowest of each marked;
+// then the numbers (the measure op's details: values.before/after.stations, ...).
+void profile_plot(const nlohmann::json& details) {
+  const nlohmann::json values = details.value("values", nlohmann::json::object());
+  const char* kSides[] = {"before", "after"};
+  const ImU32 kColours[] = {IM_COL32(40, 90, 200, 255), IM_COL32(230, 120, 20, 255)};
+  struct Series {
+    std::vector<ImVec2> points;  // (arc length mm, area mm2); open sections are left out
+    double length = 0.0;
+  } series[2];
+  double top = 0.0, right = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json side = values.value(kSides[k], nlohmann::json::object());
+    for (const auto& st : side.value("stations", nlohmann::json::array()))
+      if (st.contains("area_mm2") && st["area_mm2"].is_number() && st.value("closed", false)) {
+        series[k].points.emplace_back(st["arc_length_mm"].get<float>(), st["area_mm2"].get<float>());
+        top = std::max(top, st["area_mm2"].get<double>());
+      }
+    series[k].length = side.value("centreline_length_mm", 0.0);
+    right = std::max(right, series[k].length);
+  }
+  if (!(top > 0.0) || !(right > 0.0)) return;
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 110.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("##lumen_profile", size);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(255, 255, 255, 255));
+  draw->AddRect(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(150, 150, 150, 255));
+  const auto at = [&](const ImVec2& p) {
+    return ImVec2(origin.x + 4.0f + (size.x - 8.0f) * static_cast<float>(p.x / right),
+                  origin.y + size.y - 4.0f - (size.y - 8.0f) * static_cast<float>(p.y / (1.05 * top)));
+  };
+  for (int k = 0; k < 2; ++k) {
+    std::vector<ImVec2> screen;
+    for (const ImVec2& p : series[k].points) screen.push_back(at(p));
+    if (screen.size() >= 2) draw->AddPolyline(screen.data(), static_cast<int>(screen.size()), kColours[k], 0, 2.0f);
+    const nlohmann::json side = values.value(kSides[k], nlohmann::json::object());
+    if (side.contains("min_area_mm2"))
+      draw->AddCircleFilled(at(ImVec2(side["min_area_arc_length_mm"].get<float>(), side["min_area_mm2"].get<float>())), 4.0f,
+                            kColours[k]);
+  }
+  char scale[64];
+  std::snprintf(scale, sizeof scale, "%.1f mm2", 1.05 * top);
+  draw->AddText(ImVec2(origin.x + 6.0f, origin.y + 2.0f), IM_COL32(90, 90, 90, 255), scale);
+  for (int k = 0; k < 2; ++k) {
+    const nlohmann::json side = values.value(kSides[k], nlohmann::json::object());
+    if (!side.contains("min_area_mm2")) continue;
+    const auto& p = side["min_area_point"];
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::ColorConvertU32ToFloat4(kColours[k]));
+    ImGui::TextWrapped("%s: narrowest %.2f mm2 at %.1f of %.1f mm, centre (%.1f, %.1f, %.1f)", kSides[k],
+                       side["min_area_mm2"].get<double>(), side["min_area_arc_length_mm"].get<double>(),
+                       series[k].length, p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    ImGui::PopStyleColor();
+  }
+  if (values.contains("min_area_change_percent") && values["min_area_change_percent"].is_number())
+    ImGui::TextWrapped("Narrowest lumen %+.1f %%. Lumen area (0 to %.1f mm2) along the centreline (0 to %.1f mm).",
+                       values["min_area_change_percent"].get<double>(), 1.05 * top, right);
+}
+
+void lumen_profile_controls(GuiState& s) {
+  const auto why = s.why_not(Action::MeasureCrossSection, "measure");
+  const auto* obj = s.selected();
+  const auto loops = obj ? obj->mesh.boundary_loops() : std::vector<std::vector<engine::VertexId>>{};
+  ImGui::TextWrapped("The lumen along the vessel's automatic centreline between two open ends.");
+  const auto centre = [&](int i) {
+    engine::Vec3 c = engine::Vec3::Zero();
+    for (const auto v : loops[static_cast<std::size_t>(i)]) c += obj->mesh.position(v);
+    return engine::Vec3(c / static_cast<double>(loops[static_cast<std::size_t>(i)].size()));
+  };
+  const int n = static_cast<int>(loops.size());
+  for (int* which : {&s.profile_from, &s.profile_to}) {
+    *which = n > 0 ? std::clamp(*which, 0, n - 1) : 0;
+    ImGui::SetNextItemWidth(60);
+    ImGui::InputInt(which == &s.profile_from ? "from end" : "to end", which);
+    s.widgets.note(which == &s.profile_from ? "from end" : "to end");
+    if (n > 0) {
+      *which = std::clamp(*which, 0, n - 1);
+      const engine::Vec3 c = centre(*which);
+      ImGui::SameLine();
+      ImGui::TextDisabled("(%.1f, %.1f, %.1f)", c.x(), c.y(), c.z());
+    }
+  }
+  const std::optional<std::string> gate =
+      why ? why
+          : n < 2 ? std::optional<std::string>("The object needs two open ends.")
+          : s.profile_from == s.profile_to ? std::optional<std::string>("Choose two different ends.")
+                                           : std::nullopt;
+  if (gated_button(s.widgets, "Measure lumen profile", gate) && obj) {
+    const std::string name = "profile_" + std::to_string(++s.measure_count);
+    const ActionOutcome r =
+        s.controller.run(lumen_profile_op(obj->name, name, centre(s.profile_from), centre(s.profile_to)));
+    if (r.ok) {
+      s.last_profile = r.details;
+      s.info("Lumen profile measured");
+    } else {
+      s.error("measure failed: " + r.message);
+    }
+  }
+  if (!s.last_profile.is_null()) profile_plot(s.last_profile);
+}
+
 // Whether the simulated shape is a stable equilibrium (the relaxation's check), in colour,
 // with the full sentence as a tooltip.
 void equilibrium_line(const nlohmann::json& eq) {
@@ -127,6 +231,10 @@ void inspect_section(GuiState& s) {
 
   if (noted_tree_node(s.widgets, "Cross-section")) {
     cross_section_controls(s);
+    ImGui::TreePop();
+  }
+  if (noted_tree_node(s.widgets, "Lumen profile")) {
+    lumen_profile_controls(s);
     ImGui::TreePop();
   }
   ImGui::Separator();
