@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
@@ -37,6 +38,26 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   prepare->add_option("--edge-length", o.params.edge_length,
                       "Target edge length in mm (default: 16 edges around the narrowest end; "
                       "allowed: from 64 to 6 edges around it)");
+  prepare->add_option("--clip", o.clips,
+                      "Clip an end at a plane: ox,oy,oz,nx,ny,nz[,radius] (mm; the normal points to "
+                      "the part removed; edges within radius of the origin are cut, default 10); repeatable")
+      ->each([](const std::string& v) {
+        int numbers = 0;
+        std::istringstream in(v);
+        for (std::string part; std::getline(in, part, ',');) {
+          std::size_t used = 0;
+          try {
+            (void)std::stod(part, &used);
+          } catch (const std::exception&) {
+            used = 0;
+          }
+          if (used == 0 || used != part.size())
+            throw CLI::ValidationError("--clip", "'" + v + "': '" + part + "' is not a number");
+          ++numbers;
+        }
+        if (numbers != 6 && numbers != 7)
+          throw CLI::ValidationError("--clip", "'" + v + "': give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
+      });
   prepare->add_flag("--keep-caps", o.params.keep_caps,
                     "Find the flat end caps and report them, but keep them closed");
   prepare->add_option("--smoothing", o.params.smoothing_iterations,
@@ -67,6 +88,12 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
                     {"cap_faces", e.cap_faces}});
   nlohmann::json steps = nlohmann::json::object();
   for (const auto& [step, t] : r.step_seconds) steps[step] = t;
+  nlohmann::json clips = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.clipped.size(); ++k) {
+    const engine::PrepareClip& c = o.params.clips[k];
+    clips.push_back({{"origin", vec(c.origin)}, {"normal", vec(c.normal)}, {"radius", c.radius},
+                     {"removed_faces", r.clipped[k].first}, {"removed_area", r.clipped[k].second}});
+  }
   nlohmann::json dropped = nlohmann::json::array();
   for (const auto& d : r.dropped)
     dropped.push_back({{"faces", d.faces}, {"area", d.area}, {"centroid", vec(d.centroid)}});
@@ -79,6 +106,7 @@ nlohmann::json prepare_json(const engine::PrepareResult& r, const PrepareOptions
             {"vertices", r.vessel.num_vertices()},
             {"faces", r.vessel.num_faces()},
             {"boundary_loops", r.vessel.boundary_loops().size()}}},
+          {"clips", clips},
           {"dropped_components", dropped},
           {"flipped_orientation", r.flipped},
           {"ends", ends},
@@ -110,11 +138,24 @@ int run_prepare(const PrepareOptions& o) {
     if (fs::exists(out, ec) && fs::equivalent(out, o.input, ec))
       throw engine::InvalidArgument("prepare: " + out.string() +
                                     " is the input file; choose another --out directory");
+  // The --clip strings (checked when parsed) become the parameters' clips.
+  PrepareOptions options = o;
+  engine::PrepareParams& params = options.params;
+  for (const std::string& v : o.clips) {
+    std::vector<double> x;
+    std::istringstream in(v);
+    for (std::string part; std::getline(in, part, ',');) x.push_back(std::stod(part));
+    engine::PrepareClip clip;
+    clip.origin = {x[0], x[1], x[2]};
+    clip.normal = {x[3], x[4], x[5]};
+    if (x.size() == 7) clip.radius = x[6];
+    params.clips.push_back(clip);
+  }
   const auto start = std::chrono::steady_clock::now();
   engine::ImportOptions io;
   io.max_faces = o.max_input_faces;
   const engine::SurfaceMesh input = engine::load_mesh(o.input, io);
-  const engine::PrepareResult result = engine::prepare_vessel(input, o.params);
+  const engine::PrepareResult result = engine::prepare_vessel(input, params);
   // The automatic centreline runs between open ends: none with --keep-caps.
   std::optional<engine::CentrelineTree> centreline;
   const auto centreline_start = std::chrono::steady_clock::now();
@@ -134,7 +175,7 @@ int run_prepare(const PrepareOptions& o) {
   engine::save_mesh(result.vessel, vessel_file);
   if (centreline) engine::write_file_atomically(centreline_file, centreline_json(*centreline, result).dump(1) + "\n");
   engine::write_file_atomically(report_file,
-                                prepare_json(result, o, seconds, centreline, centreline_seconds).dump(2) + "\n");
+                                prepare_json(result, options, seconds, centreline, centreline_seconds).dump(2) + "\n");
   if (!o.quiet) {
     std::cerr << "sutura: " << o.input << ": " << result.input_faces << " faces in, "
               << result.vessel.num_faces() << " out (edge " << result.edge_length << " mm, min angle "

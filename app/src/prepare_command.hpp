@@ -6,6 +6,7 @@
 // prepare.hpp, engine/include/sutura/engine/measure/centreline.hpp, docs/patient-data.md.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,8 @@ struct PrepareOptions {
   std::string input;
   std::string out_dir;
   engine::PrepareParams params;
+  /// --clip values as given: "ox,oy,oz,nx,ny,nz[,radius]" each (parsed into params.clips).
+  std::vector<std::string> clips;
   std::size_t max_input_faces = 4'000'000;  ///< refused before parsing beyond this (at most
                                             ///< engine::kMaxPrepareInputFaces)
   bool quiet = false;

@@ -1,4 +1,5 @@
 #include "sutura/engine/patient/prepare.hpp"
+#include "sutura/engine/surgery/resect.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,7 +22,15 @@ std::string fmt(double v, int precision = 3) {
 }
 
 std::string at(const Vec3& p) {
-  return "(" + fmt(p.x(), 4) + ", " + fmt(p.y(), 4) + ", " + fmt(p.z(), 4) + ") mm";
+  // Appended in steps: GCC 12's -Wrestrict misfires on the one-expression form once inlined.
+  std::string s = "(";
+  s += fmt(p.x(), 4);
+  s += ", ";
+  s += fmt(p.y(), 4);
+  s += ", ";
+  s += fmt(p.z(), 4);
+  s += ") mm";
+  return s;
 }
 
 // Faces connected across edges, labelled 0, 1, ... in order of their smallest face; `cut`
@@ -289,16 +298,51 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   result.input_vertices = input.num_vertices();
   result.input_faces = input.num_faces();
 
+  // 0. The user's clip planes: each a resection beyond one plane.
+  SurfaceMesh clipped_input;
+  if (!params.clips.empty()) clipped_input = input;
+  for (std::size_t k = 0; k < params.clips.size(); ++k) {
+    const PrepareClip& clip = params.clips[k];
+    std::string which = "prepare: clip plane ";
+    which += std::to_string(k + 1);
+    which += " at ";
+    which += at(clip.origin);
+    if (!(clip.normal.allFinite() && clip.normal.norm() > 0.0 && clip.origin.allFinite() && clip.radius > 0.0 &&
+          std::isfinite(clip.radius)))
+      throw PrepareError(PrepareError::Kind::Clip, which + ": needs a finite origin, a non-zero normal and a positive radius");
+    const Vec3 n = clip.normal.normalized();
+    // The seed: the vertex farthest beyond the plane within the radius.
+    std::optional<Vec3> seed;
+    double beyond = 0.0;
+    for (const Vec3& p : clipped_input.positions())
+      if ((p - clip.origin).norm() <= clip.radius && (p - clip.origin).dot(n) > beyond)
+        beyond = (p - clip.origin).dot(n), seed = p;
+    if (!seed)
+      throw PrepareError(PrepareError::Kind::Clip, which + ": no part of the surface within " + fmt(clip.radius) +
+                                                       " mm of the origin lies on the side the normal points to");
+    ResectionParams rp;
+    rp.radius = clip.radius;
+    try {
+      ResectionResult r = resect(clipped_input, {CutPlane{clip.origin, n}}, *seed, rp);
+      result.clipped.emplace_back(r.removed_faces, r.removed_area);
+      clipped_input = std::move(r.mesh);
+    } catch (const InvalidArgument& e) {
+      throw PrepareError(PrepareError::Kind::Clip, which + ": " + e.what());
+    }
+  }
+  const SurfaceMesh& source = params.clips.empty() ? input : clipped_input;
+  if (!params.clips.empty()) step_done("clipping");
+
   // 1. The largest component; the others are dropped if small, refused if not.
-  const auto [component, components] = face_groups(input, [](HalfedgeId) { return false; });
+  const auto [component, components] = face_groups(source, [](HalfedgeId) { return false; });
   std::vector<double> area(static_cast<std::size_t>(components), 0.0);
   std::vector<Vec3> centroid(static_cast<std::size_t>(components), Vec3::Zero());
   std::vector<std::size_t> count(static_cast<std::size_t>(components), 0);
-  for (std::size_t f = 0; f < input.num_faces(); ++f) {
+  for (std::size_t f = 0; f < source.num_faces(); ++f) {
     const auto c = static_cast<std::size_t>(component[f]);
-    const double a = input.face_area(FaceId(static_cast<int>(f)));
+    const double a = source.face_area(FaceId(static_cast<int>(f)));
     area[c] += a;
-    centroid[c] += a * input.face_centroid(FaceId(static_cast<int>(f)));
+    centroid[c] += a * source.face_centroid(FaceId(static_cast<int>(f)));
     ++count[c];
   }
   const auto largest = static_cast<int>(std::max_element(area.begin(), area.end()) - area.begin());
@@ -320,9 +364,9 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
               " % of the largest); export the vessel alone, or remove the others");
     result.dropped.push_back({count[k], area[k], at_c});
   }
-  std::vector<bool> keep(input.num_faces());
+  std::vector<bool> keep(source.num_faces());
   for (std::size_t f = 0; f < keep.size(); ++f) keep[f] = component[f] == largest;
-  SurfaceMesh vessel = components == 1 ? input : submesh(input, keep);
+  SurfaceMesh vessel = components == 1 ? source : submesh(source, keep);
 
   step_done("components");
   // Crossing faces make every later step meaningless (which side is the lumen?).

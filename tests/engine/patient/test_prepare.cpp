@@ -339,6 +339,47 @@ TEST(PrepareErrors, AClosedSurfaceWithoutCapsIsRefused) {
   }
 }
 
+// A clip plane across the descending aorta, 10 mm above its capped end: the vessel ends
+// there in a flat open end of the aorta's radius, and what was removed is the 10 mm of tube
+// and the cap (2 pi r L + pi r^2).
+TEST(Prepare, AClipPlaneEndsTheVesselThere) {
+  const VesselEnd& descending = arch().landmarks.aorta_ends[1];
+  ASSERT_EQ(descending.name, "descending");
+  PrepareParams p;
+  PrepareClip clip;
+  clip.origin = descending.centre - 10.0 * descending.normal;
+  clip.normal = descending.normal;
+  clip.radius = 8.0;
+  p.clips.push_back(clip);
+  const PrepareResult r = prepare_vessel(capped_arch(), p);
+  ASSERT_EQ(r.ends.size(), 5u);
+  const PreparedEnd* at_clip = nullptr;
+  for (const PreparedEnd& e : r.ends)
+    if ((e.end.centre - clip.origin).norm() < 0.1) at_clip = &e;
+  ASSERT_NE(at_clip, nullptr);
+  EXPECT_FALSE(at_clip->was_cap);
+  EXPECT_NEAR(at_clip->end.radius, descending.radius, 0.02 * descending.radius);
+  EXPECT_GT(at_clip->end.normal.dot(descending.normal), std::cos(2.0 * std::numbers::pi / 180.0));
+  ASSERT_EQ(r.clipped.size(), 1u);
+  const double removed = 2.0 * std::numbers::pi * descending.radius * 10.0 + std::numbers::pi * descending.radius * descending.radius;
+  EXPECT_NEAR(r.clipped[0].second, removed, 0.02 * removed);
+  EXPECT_GE(r.min_angle_deg, 25.0);
+}
+
+TEST(PrepareErrors, AClipPlaneThatCutsNothingIsRefused) {
+  for (const Vec3& normal : {Vec3(0, 0, 1), Vec3(0, 0, 0)}) {
+    PrepareParams p;
+    p.clips.push_back({Vec3(0, 0, 100), normal, 5.0});
+    try {
+      prepare_vessel(capped_tube(), p);
+      FAIL() << "a clip plane far from the surface was accepted";
+    } catch (const PrepareError& e) {
+      EXPECT_EQ(e.kind(), PrepareError::Kind::Clip) << e.what();
+      EXPECT_NE(std::string(e.what()).find("clip plane 1"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(PrepareErrors, TooManyFacesAreRefused) {
   PrepareParams p;
   p.max_faces = 100;

@@ -2,6 +2,7 @@
 // Preparation of a segmentation export (CT/MRI, exported from 3D Slicer, Mimics, ITK-SNAP) for
 // planning: a closed, dense, slightly noisy surface with flat end caps becomes an open vessel at
 // simulation resolution with named ends. The steps, each deterministic:
+//   0. the user's clip planes, if any (a resection beyond each plane);
 //   1. keep the largest connected component (smaller ones are reported as dropped);
 //   2. orient the faces outward (signed volume, open ends closed by fans);
 //   3. find the flat end caps and open them (each becomes a named open end);
@@ -35,6 +36,7 @@ class PrepareError : public Error {
     EdgeLength,          ///< the target edge length is out of range for this vessel
     TooLarge,            ///< the result would hold too many faces
     Topology,            ///< opening the caps leaves a non-manifold surface
+    Clip,                ///< a clip plane does not cut the vessel cleanly
   };
   PrepareError(Kind kind, const std::string& what) : Error(what), kind_(kind) {}
   [[nodiscard]] Kind kind() const { return kind_; }
@@ -46,7 +48,20 @@ class PrepareError : public Error {
 /// The most faces prepare_vessel takes (its distance measurement samples every input face).
 inline constexpr std::size_t kMaxPrepareInputFaces = 5'000'000;
 
+/// A user's plane to clip an end at (the surgeon's choice where the vessel ends, e.g. a long
+/// descending aorta or a branch that is not wanted): the surface is cut along the plane within
+/// `radius` of `origin`, and the part on the side `normal` points to is removed, leaving a flat
+/// open end. The removed part is the one holding the input's farthest vertex beyond the plane
+/// within `radius` of `origin`.
+struct PrepareClip {
+  Vec3 origin = Vec3::Zero();   ///< mm, on the vessel's axis where it is to end
+  Vec3 normal = Vec3::UnitZ();  ///< towards the part removed; need not be unit, must be non-zero
+  double radius = 10.0;         ///< mm, > 0: only edges this near the origin are cut
+};
+
 struct PrepareParams {
+  /// Applied first, in order, each to the result of the previous.
+  std::vector<PrepareClip> clips;
   /// Target edge length of the result, mm. Default: 2 pi r / 16 for the smallest end radius r
   /// (16 edges around the narrowest end). Allowed: 6 to 64 edges around that end.
   std::optional<double> edge_length;
@@ -89,14 +104,16 @@ struct PrepareResult {
   SurfaceMesh vessel;                     ///< open (or capped, keep_caps), oriented outward
   std::vector<PreparedEnd> ends;
   std::vector<DroppedComponent> dropped;  ///< by decreasing area
+  /// Per clip, in order: the faces and area (mm^2) it removed from the input.
+  std::vector<std::pair<std::size_t, double>> clipped;
   std::size_t input_vertices = 0, input_faces = 0;
   bool flipped = false;          ///< the input was oriented inward and has been turned
   double edge_length = 0.0;      ///< mm, the target used
   bool edge_length_derived = false;  ///< from the smallest end (not given)
   double min_angle_deg = 0.0;    ///< of the result
   double min_edge = 0.0, max_edge = 0.0, mean_edge = 0.0;  ///< mm, of the result
-  /// Result (a) against the input surface (b) without its caps: a_to_b is how far the prepared
-  /// surface strays from the segmentation.
+  /// Result (a) against the input surface (b) without its caps and what the clips removed:
+  /// a_to_b is how far the prepared surface strays from the segmentation.
   HausdorffDistance to_input;
   double hausdorff_spacing = 0.0;  ///< mm between its samples: a fifth of the target, or more
                                    ///< for a result so large that the samples would pass 16M
