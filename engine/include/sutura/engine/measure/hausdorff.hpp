@@ -20,7 +20,9 @@ struct HausdorffDistance {
 /// each sample's distance to the other surface (exact closest point, AABB tree). A one-sided
 /// value is a lower bound of the true one, short of it by at most `spacing`. `spacing` <= 0:
 /// half the smaller of the two mean edge lengths. Throws InvalidArgument for an empty mesh or
-/// more than 20,000,000 samples. Cost O((F_a + F_b) * n^2 * log F), n = edge / spacing.
+/// more than 20,000,000 samples. Cost O((F_a + F_b) * n^2 * log F), n = edge / spacing; the
+/// two sides run on two threads when the compute threads (compute_threads.hpp) are two or
+/// more, with the same result.
 HausdorffDistance hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
                                      double spacing = 0.0);
 
