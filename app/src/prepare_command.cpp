@@ -1,6 +1,7 @@
 #include "prepare_command.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -42,6 +43,8 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
                       "Clip an end at a plane: ox,oy,oz,nx,ny,nz[,radius] (mm; the normal points to "
                       "the part removed; edges within radius of the origin are cut, default 10); repeatable")
       ->each([](const std::string& v) {
+        if (v.empty() || v.back() == ',')
+          throw CLI::ValidationError("--clip", "'" + v + "': give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
         int numbers = 0;
         std::istringstream in(v);
         for (std::string part; std::getline(in, part, ',');) {
@@ -51,8 +54,8 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
           } catch (const std::exception&) {
             used = 0;
           }
-          if (used == 0 || used != part.size())
-            throw CLI::ValidationError("--clip", "'" + v + "': '" + part + "' is not a number");
+          if (used == 0 || used != part.size() || !std::isfinite(std::stod(part)))
+            throw CLI::ValidationError("--clip", "'" + v + "': '" + part + "' is not a finite number");
           ++numbers;
         }
         if (numbers != 6 && numbers != 7)
@@ -156,10 +159,10 @@ int run_prepare(const PrepareOptions& o) {
   io.max_faces = o.max_input_faces;
   const engine::SurfaceMesh input = engine::load_mesh(o.input, io);
   const engine::PrepareResult result = engine::prepare_vessel(input, params);
-  // The automatic centreline runs between open ends: none with --keep-caps.
+  // The automatic centreline runs between open ends: none with --keep-caps or a single end.
   std::optional<engine::CentrelineTree> centreline;
   const auto centreline_start = std::chrono::steady_clock::now();
-  if (!o.params.keep_caps) {
+  if (!o.params.keep_caps && result.ends.size() >= 2) {
     std::vector<engine::VesselEnd> ends;
     for (const auto& e : result.ends) ends.push_back(e.end);
     centreline = engine::extract_centreline(result.vessel, ends);

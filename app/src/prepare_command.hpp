@@ -1,7 +1,7 @@
 #pragma once
 // `sutura prepare INPUT --out DIR`: a segmentation export (closed, dense, noisy STL with flat
 // end caps) becomes a vessel to plan on: DIR/vessel.ply, DIR/centreline.json (the automatic
-// centreline; not with --keep-caps, which leaves no open end to run between) and
+// centreline; not with --keep-caps or for a vessel of one end: it runs between open ends) and
 // DIR/prepare.json. The steps and their limits: engine/include/sutura/engine/patient/
 // prepare.hpp, engine/include/sutura/engine/measure/centreline.hpp, docs/patient-data.md.
 #include <optional>

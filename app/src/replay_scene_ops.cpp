@@ -152,6 +152,8 @@ json Run::execute(const LoadOp& op) {
     mesh = engine::load_mesh(op.file, io);
   } catch (const engine::MeshIoError& e) {
     if (e.kind() != engine::MeshIoError::Kind::TooLarge) throw;
+    if (op.prepare)
+      throw std::runtime_error(std::string(e.what()) + " faces that prepare takes; export the segmentation coarser");
     throw std::runtime_error(std::string(e.what()) +
                              (l.faces_per_object <= room ? " faces per object (--max-faces raises it)"
                                                          : " faces left of the limit of " + std::to_string(l.faces_in_all) +
@@ -159,6 +161,9 @@ json Run::execute(const LoadOp& op) {
   }
   json prepared = nullptr;
   if (op.prepare) {
+    if (room == 0)
+      throw std::runtime_error("prepare: no faces left of the limit of " + std::to_string(l.faces_in_all) +
+                               " in all (--max-faces-in-all raises it)");
     engine::PrepareParams p;
     p.edge_length = op.prepare->edge_length;
     p.smoothing_iterations = op.prepare->smoothing;

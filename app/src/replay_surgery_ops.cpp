@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <tuple>
 #include <unordered_set>
 
 #include <Eigen/Dense>
@@ -482,11 +483,10 @@ json Run::execute(const DistanceOp& op) {
 namespace {
 
 // The automatic centreline of `mesh` between the tree points nearest op.from and op.to, as a
-// polyline; records its length and point count in `side` and, when op.stations is 0, sets one
-// station per mean edge length (at least 20). `from` and `to` must lie within three radii of
-// the tree (near the vessel).
-std::vector<engine::Vec3> auto_centreline_path(const MeasureOp& op, const engine::SurfaceMesh& mesh,
-                                               const char* side_name, engine::LumenProfileParams& p) {
+// polyline, and its length (mm); when op.stations is 0, sets one station per mean edge length
+// (at least 20). `from` and `to` must lie within three radii of the tree (near the vessel).
+std::pair<std::vector<engine::Vec3>, double> auto_centreline_path(const MeasureOp& op, const engine::SurfaceMesh& mesh,
+                                                                  const char* side_name, engine::LumenProfileParams& p) {
   const std::string where = "measure '" + op.name + "' (" + side_name + ", object '" + op.object + "'): ";
   engine::CentrelineTree tree;
   try {
@@ -519,7 +519,7 @@ std::vector<engine::Vec3> auto_centreline_path(const MeasureOp& op, const engine
     const double edge = engine::mean_edge_length(mesh, {});
     p.stations = static_cast<int>(std::clamp(std::round(length / edge), 20.0, 10000.0));
   }
-  return path;
+  return {std::move(path), length};
 }
 
 }  // namespace
@@ -552,9 +552,8 @@ json Run::execute(const MeasureOp& op) {
       p.max_radius = radius;
       json side;
       if (op.auto_centreline) {
-        line = auto_centreline_path(op, *which, side_name, p);
         double length = 0.0;
-        for (std::size_t k = 1; k < line.size(); ++k) length += (line[k] - line[k - 1]).norm();
+        std::tie(line, length) = auto_centreline_path(op, *which, side_name, p);
         side["centreline_length_mm"] = length;
       }
       const engine::LumenProfile prof = engine::lumen_profile(*which, line, p);

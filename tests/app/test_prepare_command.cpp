@@ -194,7 +194,9 @@ TEST_F(PrepareCommand, BadInputGetsAClearError) {
   EXPECT_NE(run_sutura("prepare " + input.string() + " --clip 1,2,3 --out " + (export_dir() / "x").string(), &err), 0);
   EXPECT_NE(err.find("ox,oy,oz,nx,ny,nz"), std::string::npos) << err;
   EXPECT_NE(run_sutura("prepare " + input.string() + " --clip 1,2,3,0,0,x --out " + (export_dir() / "x").string(), &err), 0);
-  EXPECT_NE(err.find("'x' is not a number"), std::string::npos) << err;
+  EXPECT_NE(err.find("'x' is not a finite number"), std::string::npos) << err;
+  EXPECT_NE(run_sutura("prepare " + input.string() + " --clip 1,2,3,0,0,1, --out " + (export_dir() / "x").string(), &err), 0);
+  EXPECT_NE(run_sutura("prepare " + input.string() + " --clip 1,2,3,0,0,nan --out " + (export_dir() / "x").string(), &err), 0);
   EXPECT_EQ(run_sutura("prepare " + input.string() + " --clip 100,0,0,0,0,1 --out " + (export_dir() / "x").string(), &err), 1);
   EXPECT_NE(err.find("clip plane 1"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(export_dir() / "x" / "vessel.ply"));

@@ -43,6 +43,10 @@ constexpr int kRecentrePasses = 3;
 // Smoothing of each path before it is resampled: ring means zig-zag about the axis where a
 // ring is slanted.
 constexpr int kSmoothingIterations = 20;
+// At most about this many points per path: on a surface far finer than its vessels need
+// (a million faces), the points, each recentred on three sections of O(F), would otherwise
+// grow with the resolution.
+constexpr double kMaxPathPoints = 256.0;
 // Width of the distance bands, in mean edge lengths: at least one and a half, so that a band's
 // vertices around a tube are edge-connected.
 constexpr double kBandWidth = 2.0;
@@ -155,8 +159,7 @@ std::vector<Vec3> ring_path(const SurfaceMesh& vessel, const Adjacency& adj, con
   path.push_back(means[static_cast<std::size_t>(start)]);
   path.push_back(from_centre);
   std::reverse(path.begin(), path.end());
-  // The loops' own groups' means lie beside their centres: drop them when they would double
-  // back.
+  // A loop's centre and its group's mean can coincide: no repeated points.
   path.erase(std::unique(path.begin(), path.end()), path.end());
   return path;
 }
@@ -230,11 +233,27 @@ CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<V
     for (const VertexId v : loop) c += vessel.position(v);
     return Vec3(c / static_cast<double>(loop.size()));
   };
-  // Ends: as given (each matched to the loop with the nearest centre), or one per loop.
+  // Ends: as given (each matched to the loop with the nearest centre), or one per loop with
+  // the longest loop first (the root: a vessel's inflow is its widest end, as the aortic root).
+  // The root matters: a branch's path joins the tree where it meets the trunk on its way to
+  // the root, and with a narrow branch as the root the other branches met the trunk only
+  // inside that branch (measured on the arch with the carotid first, 2026-12-05).
   std::vector<Vec3> centres;
   std::vector<std::size_t> loop_of;
   if (given_ends.empty()) {
-    for (std::size_t i = 0; i < loops.size(); ++i) centres.push_back(loop_centre(loops[i])), loop_of.push_back(i);
+    const auto perimeter = [&](const std::vector<VertexId>& loop) {
+      double l = 0.0;
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        l += (vessel.position(loop[(i + 1) % loop.size()]) - vessel.position(loop[i])).norm();
+      return l;
+    };
+    std::size_t root = 0;
+    for (std::size_t i = 1; i < loops.size(); ++i)
+      if (perimeter(loops[i]) > perimeter(loops[root])) root = i;
+    loop_of.push_back(root);
+    for (std::size_t i = 0; i < loops.size(); ++i)
+      if (i != root) loop_of.push_back(i);
+    for (const std::size_t i : loop_of) centres.push_back(loop_centre(loops[i]));
   } else {
     if (given_ends.size() != loops.size())
       throw InvalidArgument("centreline: " + std::to_string(given_ends.size()) + " ends given for a surface with " +
@@ -266,7 +285,9 @@ CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<V
   const auto wall_distance = [&](const Vec3& p) { return std::sqrt(aabb.squared_distance(Point(p.x(), p.y(), p.z()))); };
   const auto centred_path = [&](std::size_t a, std::size_t b) {
     std::vector<Vec3> line = ring_path(vessel, adj, loops[loop_of[a]], centres[a], loops[loop_of[b]], centres[b], band);
-    line = smooth_and_resample(std::move(line), mean_edge);
+    double length = 0.0;
+    for (std::size_t k = 1; k < line.size(); ++k) length += (line[k] - line[k - 1]).norm();
+    line = smooth_and_resample(std::move(line), std::max(mean_edge, length / kMaxPathPoints));
     recentre(line, vessel, wall_distance);
     return line;
   };
@@ -352,7 +373,7 @@ std::vector<Vec3> centreline_path(const CentrelineTree& tree, const Vec3& from, 
   };
   const int a = nearest(from), b = nearest(to);
   if (a == b) throw InvalidArgument("centreline: 'from' and 'to' are nearest the same centreline point");
-  // Dijkstra by length from a (a tree has one path; this also copes with skeleton loops).
+  // Dijkstra by length from a (in a tree, the one path).
   std::vector<std::vector<std::pair<int, double>>> adj(tree.points.size());
   for (const auto& [u, v] : tree.edges) {
     const double l = (tree.points[u] - tree.points[v]).norm();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <string>
+#include <system_error>
 #include <thread>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -101,15 +102,22 @@ HausdorffDistance hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
     ta.accelerate_distance_queries();
     one_side(b, ta, spacing, h.b_to_a, h.b_to_a_at, h.mean_b_to_a, h.samples_b);
   };
+  std::thread other;
+  std::exception_ptr failure;
   if (compute_threads().openmp > 1) {
-    std::exception_ptr failure;
-    std::thread other([&] {
-      try {
-        b_side();
-      } catch (...) {
-        failure = std::current_exception();
-      }
-    });
+    try {
+      other = std::thread([&] {
+        try {
+          b_side();
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      });
+    } catch (const std::system_error&) {
+      // No thread to be had: both sides on this one.
+    }
+  }
+  if (other.joinable()) {
     try {
       a_side();
     } catch (...) {

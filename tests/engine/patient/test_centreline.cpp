@@ -106,6 +106,29 @@ TEST(Centreline, ArchAgainstItsAnalyticCentrelines) {
   EXPECT_NEAR(t.radii[at_coarctation], arch.landmarks.coarctation_min_radius, 0.1 * arch.landmarks.coarctation_min_radius);
 }
 
+// Without named ends (what `measure` with "centreline": "auto" does), the widest loop is the
+// root, and the path from the aortic root to the innominate's end stays in the aorta and the
+// innominate: within their radius plus a millimetre of their analytic centrelines, never up
+// the left common carotid (with the carotid as the root it did).
+TEST(Centreline, WithoutNamedEndsTheWidestIsTheRoot) {
+  const ArchAnatomy arch = generate_arch(ArchParams{});
+  const CentrelineTree t = extract_centreline(arch.aorta);
+  ASSERT_EQ(t.end_nodes.size(), 5u);
+  EXPECT_EQ(t.branch_points.size(), 3u);
+  EXPECT_LT((t.points[t.end_nodes[0]] - arch.landmarks.aorta_ends[0].centre).norm(), 0.1);
+  const VesselEnd& innominate = arch.landmarks.aorta_ends[2];
+  ASSERT_EQ(innominate.name, "innominate");
+  const auto path = centreline_path(t, arch.landmarks.aorta_ends[0].centre, innominate.centre);
+  for (const Vec3& p : path) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Centreline& c : arch.landmarks.centrelines)
+      if (c.name == "aorta" || c.name == "innominate")
+        for (std::size_t i = 0; i < c.points.size(); ++i)
+          nearest = std::min(nearest, (p - c.points[i]).norm() - c.radii[i]);
+    EXPECT_LT(nearest, 1.0) << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  }
+}
+
 TEST(Centreline, RefusesWhatItCannotFollow) {
   TubeParams p;
   const SurfaceMesh tube = make_tube(p);

@@ -78,8 +78,9 @@ struct GenerateOp {
 /// Loads an object from a mesh file (path relative to the session file).
 /// A load's `prepare`: the file is a segmentation export, made a vessel to plan on as it is
 /// loaded (engine::prepare_vessel: caps opened as ends, smoothed, remeshed; the same as
-/// `sutura prepare`). The session's own defaults, written out so that a recording keeps its
-/// meaning when the engine's change.
+/// `sutura prepare`). Its defaults are the session format's own (not read from the engine's),
+/// so a recording names what it asked for; how prepare derives the rest (the crease angle, 16
+/// edges around the narrowest end) is the engine's.
 struct PrepareSpec {
   std::optional<double> edge_length;  ///< mm; none: 16 edges around the narrowest end
   int smoothing = 10;                 ///< Taubin iterations, 0 to 100

@@ -27,14 +27,19 @@ struct CentrelineTree {
 /// The centreline tree of `vessel` (one connected surface with at least two open ends). `ends`
 /// name the open ends, the first being the root (e.g. prepare_vessel's, or the generator's);
 /// each is matched to the boundary loop nearest its centre, and its node is at that centre.
-/// Empty: one end per boundary loop, at the loop's vertex mean, in loop order. Throws
+/// Empty: one end per boundary loop, at the loop's vertex mean, the longest loop first (the
+/// root), then in loop order. The root should be the vessel's widest end: the branches join
+/// the trunk on their way to it. Throws
 /// InvalidArgument for an empty or unconnected surface, fewer than two open ends, or ends
 /// that do not match the loops one to one. Deterministic. Cost: per end one Dijkstra over the
-/// vertices (O(V log V)), then O(points * F) for the sections; 0.2 s at 19k faces (docs/performance.md).
+/// vertices (O(V log V)) and three sections (each O(F)) per point of its path to the root
+/// (points a mean edge apart, at most about 256 per path), so O(ends * F^1.5) up to about
+/// 65k faces and O(ends * F) beyond: 0.2 s at 19k faces (docs/performance.md).
 CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<VesselEnd>& ends = {});
 
 /// The path through the tree between the nodes nearest `from` and `to` (polyline, mm, from
-/// the first to the second). Throws InvalidArgument when both are the same node.
+/// the first to the second). Throws InvalidArgument when both are the same node or lie on
+/// unconnected parts.
 std::vector<Vec3> centreline_path(const CentrelineTree& tree, const Vec3& from, const Vec3& to);
 
 }  // namespace sutura::engine
