@@ -15,6 +15,32 @@ namespace {
 
 nlohmann::json vec(const engine::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+// One --clip value, "ox,oy,oz,nx,ny,nz[,radius]": six or seven finite numbers, no empty field.
+// Throws CLI::ValidationError naming the value and what is wrong with it.
+engine::PrepareClip parse_clip(const std::string& v) {
+  const auto fail = [&](const std::string& why) { throw CLI::ValidationError("--clip", "'" + v + "': " + why); };
+  if (v.empty() || v.back() == ',') fail("give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
+  std::vector<double> x;
+  std::istringstream in(v);
+  for (std::string part; std::getline(in, part, ',');) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != part.size() || !std::isfinite(value)) fail("'" + part + "' is not a finite number");
+    x.push_back(value);
+  }
+  if (x.size() != 6 && x.size() != 7) fail("give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
+  engine::PrepareClip clip;
+  clip.origin = {x[0], x[1], x[2]};
+  clip.normal = {x[3], x[4], x[5]};
+  if (x.size() == 7) clip.radius = x[6];
+  return clip;
+}
+
 // centreline.json: the tree as extract_centreline gives it (points and radii in mm, edges as
 // point index pairs, each end's point by name).
 nlohmann::json centreline_json(const engine::CentrelineTree& t, const engine::PrepareResult& r) {
@@ -42,25 +68,7 @@ CLI::App* add_prepare_command(CLI::App& app, PrepareOptions& o) {
   prepare->add_option("--clip", o.clips,
                       "Clip an end at a plane: ox,oy,oz,nx,ny,nz[,radius] (mm; the normal points to "
                       "the part removed; edges within radius of the origin are cut, default 10); repeatable")
-      ->each([](const std::string& v) {
-        if (v.empty() || v.back() == ',')
-          throw CLI::ValidationError("--clip", "'" + v + "': give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
-        int numbers = 0;
-        std::istringstream in(v);
-        for (std::string part; std::getline(in, part, ',');) {
-          std::size_t used = 0;
-          try {
-            (void)std::stod(part, &used);
-          } catch (const std::exception&) {
-            used = 0;
-          }
-          if (used == 0 || used != part.size() || !std::isfinite(std::stod(part)))
-            throw CLI::ValidationError("--clip", "'" + v + "': '" + part + "' is not a finite number");
-          ++numbers;
-        }
-        if (numbers != 6 && numbers != 7)
-          throw CLI::ValidationError("--clip", "'" + v + "': give ox,oy,oz,nx,ny,nz or ox,oy,oz,nx,ny,nz,radius");
-      });
+      ->each([](const std::string& v) { (void)parse_clip(v); });
   prepare->add_flag("--keep-caps", o.params.keep_caps,
                     "Find the flat end caps and report them, but keep them closed");
   prepare->add_option("--smoothing", o.params.smoothing_iterations,
@@ -141,19 +149,10 @@ int run_prepare(const PrepareOptions& o) {
     if (fs::exists(out, ec) && fs::equivalent(out, o.input, ec))
       throw engine::InvalidArgument("prepare: " + out.string() +
                                     " is the input file; choose another --out directory");
-  // The --clip strings (checked when parsed) become the parameters' clips.
+  // The --clip strings (checked when the command line was parsed) become the parameters' clips.
   PrepareOptions options = o;
   engine::PrepareParams& params = options.params;
-  for (const std::string& v : o.clips) {
-    std::vector<double> x;
-    std::istringstream in(v);
-    for (std::string part; std::getline(in, part, ',');) x.push_back(std::stod(part));
-    engine::PrepareClip clip;
-    clip.origin = {x[0], x[1], x[2]};
-    clip.normal = {x[3], x[4], x[5]};
-    if (x.size() == 7) clip.radius = x[6];
-    params.clips.push_back(clip);
-  }
+  for (const std::string& v : o.clips) params.clips.push_back(parse_clip(v));
   const auto start = std::chrono::steady_clock::now();
   engine::ImportOptions io;
   io.max_faces = o.max_input_faces;

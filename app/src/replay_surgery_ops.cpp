@@ -495,9 +495,7 @@ std::pair<std::vector<engine::Vec3>, double> auto_centreline_path(const MeasureO
     throw std::runtime_error(where + e.what());
   }
   for (const auto& [field, point] : {std::pair{"from", op.from}, std::pair{"to", op.to}}) {
-    std::size_t nearest = 0;
-    for (std::size_t v = 1; v < tree.points.size(); ++v)
-      if ((tree.points[v] - point).norm() < (tree.points[nearest] - point).norm()) nearest = v;
+    const auto nearest = static_cast<std::size_t>(engine::nearest_centreline_point(tree, point));
     const double d = (tree.points[nearest] - point).norm();
     if (d > 3.0 * tree.radii[nearest]) {
       std::ostringstream m;

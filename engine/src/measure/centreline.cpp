@@ -9,8 +9,8 @@
 // farthest from it; every other end's path is followed from its end until it meets the tree
 // built so far, and joins it there (a branch point on the parent's axis, as a surgeon and
 // VMTK place it). Why not CGAL's mean-curvature-flow skeleton: it orders collapses in a
-// std::set of Polyhedron_3 handles, i.e. by heap address, so two calls in one process gave
-// different trees (measured 2026-12-05); here every order is by vertex and group index.
+// std::set of Polyhedron_3 handles, i.e. by heap address, so two calls in one process can give
+// different trees; here every order is by vertex and group index.
 #include "sutura/engine/measure/centreline.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -236,8 +236,8 @@ CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<V
   // Ends: as given (each matched to the loop with the nearest centre), or one per loop with
   // the longest loop first (the root: a vessel's inflow is its widest end, as the aortic root).
   // The root matters: a branch's path joins the tree where it meets the trunk on its way to
-  // the root, and with a narrow branch as the root the other branches met the trunk only
-  // inside that branch (measured on the arch with the carotid first, 2026-12-05).
+  // the root, and with a narrow branch as the root the other branches meet the trunk only
+  // inside that branch.
   std::vector<Vec3> centres;
   std::vector<std::size_t> loop_of;
   if (given_ends.empty()) {
@@ -364,14 +364,15 @@ CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<V
   return tree;
 }
 
+int nearest_centreline_point(const CentrelineTree& tree, const Vec3& p) {
+  int best = 0;
+  for (int v = 1; v < static_cast<int>(tree.points.size()); ++v)
+    if ((tree.points[v] - p).norm() < (tree.points[best] - p).norm()) best = v;
+  return best;
+}
+
 std::vector<Vec3> centreline_path(const CentrelineTree& tree, const Vec3& from, const Vec3& to) {
-  const auto nearest = [&](const Vec3& p) {
-    int best = 0;
-    for (int v = 1; v < static_cast<int>(tree.points.size()); ++v)
-      if ((tree.points[v] - p).norm() < (tree.points[best] - p).norm()) best = v;
-    return best;
-  };
-  const int a = nearest(from), b = nearest(to);
+  const int a = nearest_centreline_point(tree, from), b = nearest_centreline_point(tree, to);
   if (a == b) throw InvalidArgument("centreline: 'from' and 'to' are nearest the same centreline point");
   // Dijkstra by length from a (in a tree, the one path).
   std::vector<std::vector<std::pair<int, double>>> adj(tree.points.size());

@@ -8,19 +8,10 @@
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/measure/centreline.hpp"
+#include "tree_distance.hpp"
 
 namespace sutura::engine {
 namespace {
-
-double distance_to_tree(const CentrelineTree& t, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& [a, b] : t.edges) {
-    const Vec3 d = t.points[b] - t.points[a];
-    const double s = d.squaredNorm() > 0 ? std::clamp((p - t.points[a]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (p - (t.points[a] + s * d)).norm());
-  }
-  return best;
-}
 
 TEST(Centreline, TubeAxis) {
   TubeParams p;

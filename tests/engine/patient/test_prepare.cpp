@@ -11,6 +11,7 @@
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/patient/prepare.hpp"
+#include "tree_distance.hpp"
 
 namespace sutura::engine {
 namespace {
@@ -134,15 +135,6 @@ TEST(Prepare, CentrelineOfThePreparedArch) {
   for (const PreparedEnd& e : r.ends) ends.push_back(e.end);
   const CentrelineTree t = extract_centreline(r.vessel, ends);
   EXPECT_EQ(t.branch_points.size(), 3u);
-  const auto distance_to_tree = [&](const Vec3& p) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& [a, b] : t.edges) {
-      const Vec3 d = t.points[b] - t.points[a];
-      const double s = std::clamp((p - t.points[a]).dot(d) / d.squaredNorm(), 0.0, 1.0);
-      best = std::min(best, (p - (t.points[a] + s * d)).norm());
-    }
-    return best;
-  };
   const Centreline* aorta = nullptr;
   std::vector<Vec3> origins;
   for (const Centreline& c : arch().landmarks.centrelines) {
@@ -154,7 +146,7 @@ TEST(Prepare, CentrelineOfThePreparedArch) {
   for (std::size_t i = 0; i < aorta->points.size(); ++i) {
     bool near_branch = false;
     for (const Vec3& o : origins) near_branch |= (aorta->points[i] - o).norm() < 3.0 * aorta->radii[i];
-    if (!near_branch) worst = std::max(worst, distance_to_tree(aorta->points[i]) / aorta->radii[i]);
+    if (!near_branch) worst = std::max(worst, distance_to_tree(t, aorta->points[i]) / aorta->radii[i]);
   }
   EXPECT_LT(worst, 0.1);
   int narrowest = -1;

@@ -3,9 +3,8 @@
 // inscribed at each (the distance to the wall), its branch points, and one branch per open
 // end. Each end's path runs through the rings of geodesic distance from its loop and is then
 // moved onto the centroids of the sections perpendicular to it; branches join the trunk (root
-// to farthest end) on its axis. The method and why it is not CGAL's skeleton: the .cpp.
-// Accuracy on the generated arch: within 0.07 radii of the analytic centrelines outside the
-// junctions, 0.9 mm inside them (tests/engine/patient/test_centreline.cpp).
+// to farthest end) on its axis. The method and why it is not CGAL's skeleton: the .cpp;
+// accuracy: docs/patient-data.md.
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,8 +33,11 @@ struct CentrelineTree {
 /// that do not match the loops one to one. Deterministic. Cost: per end one Dijkstra over the
 /// vertices (O(V log V)) and three sections (each O(F)) per point of its path to the root
 /// (points a mean edge apart, at most about 256 per path), so O(ends * F^1.5) up to about
-/// 65k faces and O(ends * F) beyond: 0.2 s at 19k faces (docs/performance.md).
+/// 65k faces and O(ends * F) beyond (times: docs/performance.md).
 CentrelineTree extract_centreline(const SurfaceMesh& vessel, const std::vector<VesselEnd>& ends = {});
+
+/// The index of the tree point nearest `p` (the first of equals); the tree must have points.
+int nearest_centreline_point(const CentrelineTree& tree, const Vec3& p);
 
 /// The path through the tree between the nodes nearest `from` and `to` (polyline, mm, from
 /// the first to the second). Throws InvalidArgument when both are the same node or lie on
