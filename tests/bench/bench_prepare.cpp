@@ -28,7 +28,9 @@ const SurfaceMesh& fine_arch() {
   return aorta;
 }
 
-// Arg: the export's largest mean edge in micrometres (300: ~78k faces; 100: ~1.24M faces).
+// Args: the export's largest mean edge in micrometres (300: ~78k faces; 100: ~1.24M faces);
+// 1: the default coarsening (in two halves from 200k faces), 0: in one pass whatever the size
+// (the A/B of the halves).
 void BM_Prepare(benchmark::State& state) {
   SegmentationLikeParams sp;
   sp.max_edge_length = static_cast<double>(state.range(0)) * 1e-3;
@@ -36,7 +38,9 @@ void BM_Prepare(benchmark::State& state) {
   const SurfaceMesh input = segmentation_like(fine_arch(), sp);
   PrepareResult result;
   for (auto _ : state) {
-    result = prepare_vessel(input);
+    PrepareParams params;
+    if (state.range(1) == 0) params.coarsen_in_halves_from = input.num_faces() + 1;
+    result = prepare_vessel(input, params);
     benchmark::DoNotOptimize(result.vessel.num_faces());
   }
   state.counters["input_faces"] = static_cast<double>(input.num_faces());
@@ -75,6 +79,6 @@ void BM_Centreline(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Centreline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_Prepare)->Arg(300)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Prepare)->Args({300, 1})->Args({100, 1})->Args({100, 0})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

@@ -518,6 +518,7 @@ PrepareResult prepare_vessel(const SurfaceMesh& input, const PrepareParams& para
   in.max_deviation = 0.03 * h;
   in.repair_below_deg = 27.0;
   in.coarsen_below = 0.5 * h;
+  in.coarsen_in_halves_from = params.coarsen_in_halves_from;
   detail::CgalRemeshOutput out = detail::cgal_remesh(in);
   result.vessel = SurfaceMesh(std::move(out.positions), std::move(out.faces));
   if (result.vessel.num_faces() > params.max_faces)

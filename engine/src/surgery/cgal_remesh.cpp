@@ -4,6 +4,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <thread>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_segment_primitive.h>
@@ -18,8 +19,11 @@
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Midpoint_placement.h>
+#include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
+#include "sutura/engine/compute_threads.hpp"
+#include "sutura/engine/errors.hpp"
 #include "sutura/engine/surgery/surface_point.hpp"
 
 namespace sutura::engine::detail {
@@ -278,6 +282,239 @@ int dissolve_boundary_vertices(Mesh& mesh, EdgeMap& constrained, VertexMap& fixe
   return removed;
 }
 
+namespace SMS = CGAL::Surface_mesh_simplification;
+
+// During the collapses: when a vertex on a held edge is collapsed into a free one, the vertex
+// that stays takes its point (Constrained_placement) and, here, its key and its pin, so that the
+// key names the input vertex whose point it holds.
+struct FollowPinnedVertex : SMS::Edge_collapse_visitor_base<Mesh> {
+  Mesh::Property_map<VI, int> key;
+  Mesh::Property_map<VI, bool> pinned;
+  void OnCollapsed(const Profile& profile, const VI& kept) {
+    const VI gone = kept == profile.v0() ? profile.v1() : profile.v0();
+    if (!pinned[gone]) return;
+    key[kept] = key[gone];
+    pinned[kept] = true;
+  }
+};
+
+// With `keep_pinned_apart`: refuses a collapse that would join two vertices on held edges by a
+// new edge (two halves joined along their cut must not both have an edge between the same two
+// cut vertices).
+struct KeepPinnedApart {
+  Mesh::Property_map<VI, bool> pinned;
+  bool active = false;
+  template <class Profile>
+  boost::optional<Point> operator()(const Profile& profile, const boost::optional<Point>& at) const {
+    if (!active || !at) return at;
+    const Mesh& m = profile.surface_mesh();
+    VI p = profile.v0(), f = profile.v1();
+    if (!pinned[p]) std::swap(p, f);
+    if (!pinned[p]) return at;
+    for (HI h : CGAL::halfedges_around_target(f, m)) {
+      const VI n = m.source(h);
+      if (n == p || !pinned[n]) continue;
+      if (m.halfedge(n, p) == Mesh::null_halfedge()) return boost::none;
+    }
+    return at;
+  }
+};
+
+// Shortest edges first, each collapsed to its midpoint, until none is shorter than `below`.
+// Held edges never collapse and their vertices neither move nor go (CGAL collapses no edge whose
+// two ends are both on held edges).
+void collapse_shortest(Mesh& m, Mesh::Property_map<EI, bool> held, Mesh::Property_map<VI, int> key,
+                       double below, bool keep_pinned_apart) {
+  auto pinned = m.add_property_map<VI, bool>("v:pinned", false).first;
+  for (EI e : m.edges())
+    if (held[e]) pinned[m.vertex(e, 0)] = pinned[m.vertex(e, 1)] = true;
+  const SMS::Edge_length_stop_predicate<double> stop(below);
+  const SMS::Constrained_placement<SMS::Midpoint_placement<Mesh>, decltype(held)> placement(held);
+  FollowPinnedVertex visitor;
+  visitor.key = key;
+  visitor.pinned = pinned;
+  SMS::edge_collapse(m, stop,
+                     CGAL::parameters::get_cost(SMS::Edge_length_cost<Mesh>())
+                         .get_placement(placement)
+                         .edge_is_constrained_map(held)
+                         .visitor(visitor)
+                         .filter(KeepPinnedApart{pinned, keep_pinned_apart}));
+  m.remove_property_map(pinned);
+}
+
+// One half of the mesh being coarsened, as a mesh of its own: the cut between the halves is an
+// open boundary of each, held like one.
+struct Half {
+  Mesh mesh;
+  Mesh::Property_map<VI, int> whole;   // the vertex of the whole mesh
+  Mesh::Property_map<EI, bool> held;   // constrained in the whole mesh, or on this half's boundary
+  Mesh::Property_map<EI, bool> given;  // constrained in the whole mesh
+  Mesh::Property_map<FI, int> patch;
+};
+
+// Coarsens `mesh` (every face in the region, no vertex fixed) by collapse_shortest. A mesh of
+// `in_halves_from` faces or more is cut into two halves of faces, at the median of the face
+// centroids along the longest side of its bounding box (ties by face index); each half is
+// coarsened with the cut held, on a second thread when the compute threads allow, and the halves
+// are joined again along the cut, whose vertices are the whole mesh's. The cut depends on the
+// input only, so the result is the same on one thread as on two. The cut stays at the input's
+// resolution; the remeshing that follows evens it out.
+template <class EdgeMap, class IdMap, class FaceMap, class PatchMap>
+void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, PatchMap& patch,
+             double below, std::size_t in_halves_from) {
+  if (mesh.number_of_faces() < in_halves_from) {
+    collapse_shortest(mesh, econ, old_id, below, false);
+    return;
+  }
+  std::vector<FI> order(mesh.faces().begin(), mesh.faces().end());
+  CGAL::Bbox_3 box;
+  for (VI v : mesh.vertices()) box += mesh.point(v).bbox();
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (box.max(a) - box.min(a) > box.max(axis) - box.min(axis)) axis = a;
+  const auto centroid = [&](FI f) {
+    double c = 0.0;
+    for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c += mesh.point(v)[axis];
+    return c;
+  };
+  std::vector<std::pair<double, FI>> keyed;
+  keyed.reserve(order.size());
+  for (FI f : order) keyed.emplace_back(centroid(f), f);
+  const auto middle = keyed.begin() + static_cast<std::ptrdiff_t>(keyed.size() / 2);
+  std::nth_element(keyed.begin(), middle, keyed.end());
+  std::vector<char> second(mesh.num_faces(), 0);
+  for (auto it = middle; it != keyed.end(); ++it) second[it->second.idx()] = 1;
+  // Each half must be a manifold: around every vertex, the faces of a half must form one fan.
+  // Where a half's faces around a vertex come in several runs, all the faces around it go to
+  // the first half, round by round; should pinches remain, one pass over the whole mesh.
+  std::vector<int> ring;
+  const auto pinched = [&](VI v) {
+    ring.clear();
+    for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+      ring.push_back(f == Mesh::null_face() ? -1 : second[f.idx()]);
+    std::array<int, 2> runs{0, 0};
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const int here = ring[i], before = ring[(i + ring.size() - 1) % ring.size()];
+      if (here >= 0 && here != before) ++runs[static_cast<std::size_t>(here)];
+    }
+    return runs[0] > 1 || runs[1] > 1;
+  };
+  bool manifold_halves = false;
+  for (int round = 0; round < 50 && !manifold_halves; ++round) {
+    std::vector<VI> pinches;
+    for (VI v : mesh.vertices())
+      if (pinched(v)) pinches.push_back(v);
+    manifold_halves = pinches.empty();
+    for (VI v : pinches)
+      for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
+        if (f != Mesh::null_face()) second[f.idx()] = 0;
+  }
+  if (!manifold_halves) {
+    collapse_shortest(mesh, econ, old_id, below, false);
+    return;
+  }
+
+  std::array<Half, 2> halves;
+  for (int k = 0; k < 2; ++k) {
+    Half& half = halves[static_cast<std::size_t>(k)];
+    half.whole = half.mesh.add_property_map<VI, int>("v:whole", -1).first;
+    half.held = half.mesh.add_property_map<EI, bool>("e:held", false).first;
+    half.given = half.mesh.add_property_map<EI, bool>("e:given", false).first;
+    half.patch = half.mesh.add_property_map<FI, int>("f:patch", 0).first;
+    std::vector<VI> local(mesh.num_vertices(), Mesh::null_vertex());
+    for (FI f : order) {
+      if (second[f.idx()] != k) continue;
+      std::array<VI, 3> corners;
+      int c = 0;
+      for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+        if (local[v.idx()] == Mesh::null_vertex()) {
+          local[v.idx()] = half.mesh.add_vertex(mesh.point(v));
+          half.whole[local[v.idx()]] = static_cast<int>(v.idx());
+        }
+        corners[static_cast<std::size_t>(c++)] = local[v.idx()];
+      }
+      half.patch[half.mesh.add_face(corners[0], corners[1], corners[2])] = patch[f];
+    }
+    for (EI e : half.mesh.edges()) {
+      const VI a(static_cast<Mesh::size_type>(half.whole[half.mesh.vertex(e, 0)]));
+      const VI b(static_cast<Mesh::size_type>(half.whole[half.mesh.vertex(e, 1)]));
+      half.given[e] = econ[mesh.edge(mesh.halfedge(a, b))];
+      half.held[e] = half.given[e] || half.mesh.is_border(e);
+    }
+  }
+  const auto run = [&](int k) {
+    Half& half = halves[static_cast<std::size_t>(k)];
+    collapse_shortest(half.mesh, half.held, half.whole, below, true);
+  };
+  std::thread other;
+  std::exception_ptr failure;
+  if (compute_threads().openmp > 1) {
+    try {
+      other = std::thread([&] {
+        try {
+          run(1);
+        } catch (...) {
+          failure = std::current_exception();
+        }
+      });
+    } catch (const std::system_error&) {
+      // No thread to be had: both halves on this one.
+    }
+  }
+  if (other.joinable()) {
+    try {
+      run(0);
+    } catch (...) {
+      other.join();
+      throw;
+    }
+    other.join();
+    if (failure) std::rethrow_exception(failure);
+  } else {
+    run(0);
+    run(1);
+  }
+
+  // Join: the vertices on held edges (the cut and the whole mesh's constraints) are whole-mesh
+  // vertices and are shared; every other vertex is its half's own.
+  std::vector<int> old_of(mesh.num_vertices(), -1);
+  for (VI v : mesh.vertices()) old_of[v.idx()] = old_id[v];
+  std::vector<VI> joined(mesh.num_vertices(), Mesh::null_vertex());
+  mesh.clear_without_removing_property_maps();
+  for (Half& half : halves) {
+    auto pinned = half.mesh.add_property_map<VI, bool>("v:pinned", false).first;
+    for (EI e : half.mesh.edges())
+      if (half.held[e]) pinned[half.mesh.vertex(e, 0)] = pinned[half.mesh.vertex(e, 1)] = true;
+    std::vector<VI> to(half.mesh.num_vertices(), Mesh::null_vertex());
+    for (VI v : half.mesh.vertices()) {
+      const auto w = static_cast<std::size_t>(half.whole[v]);
+      if (pinned[v] && joined[w] != Mesh::null_vertex()) {
+        to[v.idx()] = joined[w];
+        continue;
+      }
+      const VI n = mesh.add_vertex(half.mesh.point(v));
+      old_id[n] = old_of[w];
+      to[v.idx()] = n;
+      if (pinned[v]) joined[w] = n;
+    }
+    for (FI f : half.mesh.faces()) {
+      std::array<VI, 3> corners;
+      int c = 0;
+      for (VI v : CGAL::vertices_around_face(half.mesh.halfedge(f), half.mesh))
+        corners[static_cast<std::size_t>(c++)] = to[v.idx()];
+      const FI n = mesh.add_face(corners[0], corners[1], corners[2]);
+      if (n == Mesh::null_face())
+        throw TopologyError("remeshing: the two coarsened halves do not join into a manifold");
+      patch[n] = half.patch[f];
+      in_region[n] = true;
+    }
+    for (EI e : half.mesh.edges())
+      if (half.given[e])
+        econ[mesh.edge(mesh.halfedge(to[half.mesh.vertex(e, 0).idx()],
+                                     to[half.mesh.vertex(e, 1).idx()]))] = true;
+  }
+}
+
 }  // namespace
 
 CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
@@ -366,13 +603,7 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   dissolve_boundary_vertices(mesh, econ, vfixed, old_id, in_region, in.removed_boundary_vertices);
 
   if (in.coarsen_below > 0.0) {
-    namespace SMS = CGAL::Surface_mesh_simplification;
-    const SMS::Edge_length_stop_predicate<double> stop(in.coarsen_below);
-    const SMS::Constrained_placement<SMS::Midpoint_placement<Mesh>, decltype(econ)> placement(econ);
-    SMS::edge_collapse(mesh, stop,
-                       CGAL::parameters::get_cost(SMS::Edge_length_cost<Mesh>())
-                           .get_placement(placement)
-                           .edge_is_constrained_map(econ));
+    coarsen(mesh, econ, old_id, in_region, patch, in.coarsen_below, in.coarsen_in_halves_from);
     for (VI v : mesh.vertices())
       if (!mesh.is_border(v) && !on_polyline(v)) mesh.point(v) = project(v);
   }
@@ -466,17 +697,21 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
           worst = std::max(worst, (to_vec(nearest_on(to_point(q), f, false)) - q).norm());
         if (worst <= in.max_deviation) continue;
         // hs[k] runs from corner k-1 to corner k: its length is |p[k] - p[k-1]|. No edge is
-        // split below a third of the target, and none on the open boundary below half of it (a
-        // short edge there makes a thin face that neither a flip nor smoothing can mend).
+        // split below a third of the target (a quarter where the face strays more than twice
+        // the allowed distance: a shoulder sharper than the target can follow), and none on the
+        // open boundary below half of it (a short edge there makes a thin face that neither a
+        // flip nor smoothing can mend).
         int longest = -1;
         double longest_length = 0.0;
         for (int j = 0; j < 3; ++j) {
           const double l = (p[j] - p[(j + 2) % 3]).norm();
           if (l > longest_length) longest_length = l, longest = j;
         }
-        if (longest < 0 ||
-            longest_length <= (mesh.is_border(mesh.edge(hs[longest])) ? shortest_border_split : shortest_split))
-          continue;
+        if (longest < 0) continue;
+        const double shortest = mesh.is_border(mesh.edge(hs[longest]))
+                                    ? shortest_border_split
+                                    : (worst > 2.0 * in.max_deviation ? 0.75 : 1.0) * shortest_split;
+        if (longest_length <= shortest) continue;
         split.push_back(mesh.edge(hs[longest]));
       }
       std::sort(split.begin(), split.end());

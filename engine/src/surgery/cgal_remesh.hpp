@@ -32,12 +32,15 @@ struct CgalRemeshInput {
   /// back; the remesher then has far fewer collapses to make, and still projects onto the full
   /// input. Every face must then be in `region` and no vertex fixed. 0: off.
   double coarsen_below = 0.0;
+  /// From this many faces on, the coarsening runs in two halves of the mesh, on two threads
+  /// when the compute threads allow (the same result on any thread count; see coarsen()).
+  std::size_t coarsen_in_halves_from = 200000;
   /// After remeshing, a face whose centroid or an edge midpoint lies farther than this (mm)
   /// from the input surface has its longest edge split at the projected midpoint, if that
-  /// edge is longer than 2/3 of the (last band's) target (on the open boundary: longer than
-  /// the target) (rounds of splits and Delaunay
-  /// flips, at most 6): curvature the target length cannot follow gets finer faces, down to
-  /// a third of the target. 0: off (the surgical bands). Every face must then be in `region`.
+  /// edge is longer than 2/3 of the (last band's) target (1/2 where the face strays farther
+  /// than twice this; on the open boundary: longer than the target) (rounds of splits and
+  /// Delaunay flips, at most 6): curvature the target length cannot follow gets finer faces,
+  /// down to a third of the target (a quarter). 0: off (the surgical bands). Every face must then be in `region`.
   double max_deviation = 0.0;  ///< needs a band (its target sets the split floor)
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces

@@ -8,6 +8,7 @@
 
 #include "sutura/engine/anatomy/aortic_arch.hpp"
 #include "sutura/engine/anatomy/segmentation_export.hpp"
+#include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/measure/centreline.hpp"
 #include "sutura/engine/patient/prepare.hpp"
@@ -194,6 +195,44 @@ TEST(Prepare, IsDeterministic) {
   EXPECT_EQ(a.vessel.faces(), b.vessel.faces());
   for (std::size_t v = 0; v < a.vessel.num_vertices(); ++v)
     ASSERT_EQ(a.vessel.positions()[v], b.vessel.positions()[v]) << "vertex " << v;
+}
+
+// A large export's first coarsening runs in two halves of the surface, joined again along their
+// cut (on two threads when allowed); the threshold is lowered here so that small inputs take
+// that path.
+TEST(Prepare, CoarseningInHalvesIsTheSameOnAnyThreadCount) {
+  const SurfaceMesh input = capped_tube();
+  PrepareParams params;
+  params.coarsen_in_halves_from = 1000;
+  const int threads = compute_threads().openmp;
+  set_compute_threads(1);
+  const PrepareResult one = prepare_vessel(input, params);
+  set_compute_threads(2);
+  const PrepareResult two = prepare_vessel(input, params);
+  set_compute_threads(threads);
+  EXPECT_TRUE(two.vessel.validate().ok()) << two.vessel.validate().summary();
+  EXPECT_EQ(two.vessel.boundary_loops().size(), 2u);
+  EXPECT_GE(two.min_angle_deg, 25.0);
+  EXPECT_LT(two.to_input.symmetric, 0.1 * two.edge_length);
+  ASSERT_EQ(one.vessel.num_vertices(), two.vessel.num_vertices());
+  EXPECT_EQ(one.vessel.faces(), two.vessel.faces());
+  for (std::size_t v = 0; v < one.vessel.num_vertices(); ++v)
+    ASSERT_EQ(one.vessel.positions()[v], two.vessel.positions()[v]) << "vertex " << v;
+  // The halves are a different path from the one pass (which the default takes here).
+  EXPECT_NE(prepare_vessel(input).vessel.positions(), two.vessel.positions());
+}
+
+TEST(Prepare, ArchCoarsenedInHalvesIsWellShapedAndStaysOnTheSegmentation) {
+  PrepareParams params;
+  params.coarsen_in_halves_from = 1000;
+  const PrepareResult r = prepare_vessel(capped_arch(), params);
+  EXPECT_TRUE(r.vessel.validate().ok()) << r.vessel.validate().summary();
+  EXPECT_EQ(r.ends.size(), prepared_arch().ends.size());
+  EXPECT_EQ(r.vessel.boundary_loops().size(), prepared_arch().vessel.boundary_loops().size());
+  EXPECT_GE(r.min_angle_deg, 25.0);
+  EXPECT_LT(r.to_input.a_to_b, 0.1 * r.edge_length);
+  EXPECT_LT(r.to_input.b_to_a, 0.1 * r.edge_length);
+  EXPECT_LT(r.to_input.mean_a_to_b, 0.02 * r.edge_length);
 }
 
 TEST(Prepare, SmallComponentsAreDroppedAndReported) {
