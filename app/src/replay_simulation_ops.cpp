@@ -19,6 +19,29 @@ namespace fs = std::filesystem;
 namespace {
 
 // Loads that reached full value become part of the applied (constant) loads.
+// The pre-operative state ("before" of measurements and snapshots, the reference of
+// displacements and probes) becomes the object at `positions`, its strains those of its
+// current state on its current rest.
+void make_before(SceneObject& obj, const std::vector<engine::Vec3>& positions) {
+  obj.sim.reference = positions;
+  // (The mesh now, not as loaded: a remesh may have come between.)
+  obj.before = obj.mesh;
+  obj.before.set_positions(positions);
+  const auto shell = engine::make_corotational_shell();
+  const engine::ShellProblem problem{&obj.mesh.faces(), &obj.sim.rest, &obj.sim.materials,
+                                     &obj.sim.face_material, obj.mesh.num_vertices()};
+  obj.before_measures = engine::face_to_vertex(obj.before, shell->measures(problem, obj.sim.state));
+}
+
+// A state that is to become "before" must be the vessel before surgery.
+void require_unedited(const SceneObject& obj, const std::string& what) {
+  // The rest becomes one vertex field (engine/sim/unload.hpp) for unload: a suture's 1:n rest
+  // mapping or a relaxation under way would be lost; for either, an edit already made would
+  // make "before" a state after surgery.
+  if (!obj.sim.marks.incisions.empty() || !obj.sim.marks.sutures.empty() || obj.sim.relax_from)
+    throw std::runtime_error("'" + obj.name + "' has been incised or sutured; " + what);
+}
+
 void commit_pending_loads(SceneObject& o) {
   auto& p = o.sim.pending_loads;
   auto& a = o.sim.applied_loads;
@@ -229,6 +252,11 @@ json Run::execute(const SolveOp& op) {
     throw std::runtime_error("load_factor " + std::to_string(op.load_factor) +
                              " is below the load factor already reached (" +
                              std::to_string(start) + ")");
+  if (op.as_before)
+    for (const SceneObject* o : objs)
+      require_unedited(*o,
+                       "a solve with as_before makes the pre-operative vessel, so solve it before "
+                       "the first edit");
   require_restrained(objs, "static solve");
   const auto model = make_model(op.model);
   const engine::AreaBarrierParams barrier;
@@ -254,9 +282,12 @@ json Run::execute(const SolveOp& op) {
     else o->sim.pending_factor = r.lambda_reached;
   }
   if (!r.converged) throw std::runtime_error(r.message);
+  if (op.as_before)
+    for (SceneObject* o : objs) make_before(*o, o->mesh.positions());
   json out = {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},
               {"residual", r.residual}, {"energy", r.energy}, {"load_factor", r.lambda_reached},
               {"history", history}};
+  if (op.as_before) out["as_before"] = true;
   if (op.minimize) out["quasi_newton_iterations"] = r.quasi_newton_iterations;
   if (op.check_stability) {
     engine::StabilityParams sp;
@@ -272,12 +303,9 @@ json Run::execute(const SolveOp& op) {
 json Run::execute(const UnloadOp& op) {
   remember();
   SceneObject& obj = edit(op.object);
-  // The rest becomes one vertex field (engine/sim/unload.hpp): a suture's 1:n rest mapping
-  // or a relaxation under way would be lost.
-  if (!obj.sim.marks.incisions.empty() || !obj.sim.marks.sutures.empty() || obj.sim.relax_from)
-    throw std::runtime_error("'" + op.object +
-                             "' has been incised or sutured; unload finds the unloaded shape of "
-                             "the vessel as imaged, so unload it before the first edit");
+  require_unedited(obj,
+                   "unload finds the unloaded shape of the vessel as imaged, so unload it before "
+                   "the first edit");
   if (obj.sim.applied_loads.empty() && obj.sim.pending_loads.empty())
     throw std::runtime_error("'" + op.object +
                              "' has no loads to unload: set the loads it was imaged under first "
@@ -305,16 +333,7 @@ json Run::execute(const UnloadOp& op) {
   merged.rest() = r.rest;
   merged.write_back();
   obj.sim.rest = r.rest;
-  obj.sim.reference = imaged;
-  // (The mesh now, not as loaded: a remesh may have come between.)
-  obj.before = obj.mesh;
-  obj.before.set_positions(imaged);
-  {
-    const auto shell = engine::make_corotational_shell();
-    const engine::ShellProblem problem{&obj.mesh.faces(), &obj.sim.rest, &obj.sim.materials,
-                                       &obj.sim.face_material, obj.mesh.num_vertices()};
-    obj.before_measures = engine::face_to_vertex(obj.before, shell->measures(problem, obj.sim.state));
-  }
+  make_before(obj, imaged);
   commit_pending_loads(obj);
   json history = json::array();
   for (std::size_t k = 0; k < r.history.size(); ++k) {

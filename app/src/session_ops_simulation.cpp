@@ -164,6 +164,9 @@ SolveOp parse_solve(Fields& f) {
   op.load_factor = f.optional_positive("load_factor", op.load_factor);
   if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
   parse_solver_settings(f, op);
+  op.as_before = f.optional_bool("as_before", op.as_before);
+  if (op.as_before && op.load_factor < 1.0)
+    f.fail("as_before", "needs load_factor 1 (\"before\" is the vessel under its full loads)");
   return op;
 }
 

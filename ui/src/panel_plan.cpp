@@ -206,6 +206,17 @@ void load_controls(GuiState& s) {
     s.perform({{"op", "pressure"}, {"object", s.selected()->name},
                {"pressure", s.pressure_mmhg * kMpaPerMmHg}},
               "Pressure of " + std::to_string(int(s.pressure_mmhg)) + " mmHg on '" + s.selected()->name + "'");
+  // A vessel meshed at zero pressure (generated, or drawn unloaded): pressurised before the
+  // surgery, "before" is that state, so before and after are both under pressure.
+  if (gated_button(s.widgets, "Pressurise before surgery", s.why_not(Action::EditMaterial),
+                   "The mesh is the vessel at zero pressure: solve it under the pressure applied "
+                   "now, and make that pressurised vessel 'before', so that before and after "
+                   "compare like with like. Apply the pressure and hold the ends first; before the "
+                   "first incision. A segmentation was imaged under pressure: unload it instead.") &&
+      s.selected())
+    s.perform({{"op", "solve"}, {"objects", {s.selected()->name}}, {"as_before", true},
+               {"load_steps", 1}, {"minimize", true}, {"quasi_newton_steps", 5}},
+              "'" + s.selected()->name + "' pressurised before surgery: this is 'before'");
   // A segmented vessel was imaged under blood pressure: unload keeps it where it was imaged,
   // stressed by the pressures applied, instead of inflating it a second time.
   if (gated_button(s.widgets, "Imaged under this pressure (unload)", s.why_not(Action::EditMaterial),

@@ -200,6 +200,11 @@ struct SolveOp {
   /// Levenberg-Marquardt and quasi-Newton steps, line search on the potential). Only for
   /// conservative loads and a stable equilibrium; it cannot follow an unstable branch.
   bool minimize = false;
+  /// After the solve, the solved shape is the pre-operative one: "before" of measurements and
+  /// snapshots, and the reference of displacements and probes (the vessel pressurised before
+  /// the surgery, so that before and after compare like with like). Needs load_factor 1 and
+  /// objects not yet incised or sutured.
+  bool as_before = false;
 };
 
 /// Unloaded (zero-pressure) reference of an imaged vessel (engine::unload): the rest shape
