@@ -127,6 +127,9 @@ json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs
 // Undo depth, whatever the memory: a GUI's history need not be longer.
 constexpr std::size_t kMaxUndo = 64;
 
+// A suture whose one side is longer than this many times the other gets a warning.
+constexpr double kUnevenSutureRatio = 2.0;
+
 json suture_report(const engine::SutureReport& s) {
   json j = {{"vertices_a", s.vertices_a},   {"vertices_b", s.vertices_b},
             {"inserted_a", s.inserted_a},   {"inserted_b", s.inserted_b},
@@ -296,11 +299,27 @@ json Run::execute(const JoinOp& op) {
   engine::start_relaxation(obj.mesh, obj.sim, r.merged, moved_faces);
   for (const auto& seam : r.seams) obj.sim.marks.sutures.push_back(seam);
   json sutures = json::array();
-  for (const auto& s : r.sutures) sutures.push_back(suture_report(s));
+  std::string uneven;
+  for (std::size_t i = 0; i < r.sutures.size(); ++i) {
+    const engine::SutureReport& s = r.sutures[i];
+    sutures.push_back(suture_report(s));
+    // Sides of very different length: the shorter is stretched along the longer (a chain
+    // picked too short or too long, or the wrong lip), which a surgeon would not sew.
+    const double shorter = std::min(s.length_a, s.length_b), longer = std::max(s.length_a, s.length_b);
+    if (longer > kUnevenSutureRatio * shorter) {
+      std::ostringstream w;
+      w << (uneven.empty() ? "" : "; ") << "suture " << i + 1 << ": its sides differ in length by a factor of "
+        << std::setprecision(2) << std::fixed << longer / shorter << " (" << s.length_a << " mm against "
+        << s.length_b << " mm), more than " << kUnevenSutureRatio
+        << ": the shorter side is stretched along the longer; check the chains picked";
+      uneven += w.str();
+    }
+  }
   json j = {{"object", op.object},
             {"sutures", sutures},
             {"merged_vertices", r.merged.size()},
             {"displaced_vertices", r.displaced.size()}};
+  if (!uneven.empty()) j["warning"] = uneven;
   if (!seams.is_null()) j["remesh"] = seams;
   j["mesh"] = mesh_counts(obj);
   return j;

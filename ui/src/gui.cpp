@@ -5,6 +5,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -182,6 +183,17 @@ int run_gui(const GuiOptions& options) {
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini next to the user's files
+  // Windows resize from their edges (the message history from its top edge), with the
+  // matching mouse cursors (GLFW's standard ones; the diagonal and all-way shapes fall back to
+  // the arrow).
+  io.ConfigWindowsResizeFromEdges = true;
+  io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;
+  std::array<GLFWcursor*, ImGuiMouseCursor_COUNT> cursors{};
+  cursors[ImGuiMouseCursor_TextInput] = glfwCreateStandardCursor(GLFW_IBEAM_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeNS] = glfwCreateStandardCursor(GLFW_VRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeEW] = glfwCreateStandardCursor(GLFW_HRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_Hand] = glfwCreateStandardCursor(GLFW_HAND_CURSOR);
+  ImGuiMouseCursor shown_cursor = ImGuiMouseCursor_Arrow;
   map_imgui_keys();
   ImGui::StyleColorsLight();
   window.make_current();
@@ -244,6 +256,10 @@ int run_gui(const GuiOptions& options) {
       s.error(e.what());
     }
     ImGui::Render();
+    if (const ImGuiMouseCursor want = ImGui::GetMouseCursor(); want != shown_cursor) {
+      shown_cursor = want;
+      glfwSetCursor(glfw, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
+    }
 
     window.make_current();  // snapshots render off-screen and leave OSMesa current
     try {
@@ -266,6 +282,9 @@ int run_gui(const GuiOptions& options) {
     }
     glfwSwapBuffers(glfw);
   }
+  glfwSetCursor(glfw, nullptr);
+  for (GLFWcursor* c : cursors)
+    if (c) glfwDestroyCursor(c);
   if (controller.busy()) controller.cancel();
   while (controller.busy() && !controller.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   try {

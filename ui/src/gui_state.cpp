@@ -31,12 +31,14 @@ const app::SceneObject* GuiState::selected() const {
 
 void GuiState::info(std::string text) {
   messages.push_back({std::move(text), false});
-  while (messages.size() > 6) messages.pop_front();
+  while (messages.size() > kMessageHistory) messages.pop_front();
+  ++messages_posted;
 }
 
 void GuiState::error(std::string text) {
   messages.push_back({std::move(text), true});
-  while (messages.size() > 6) messages.pop_front();
+  while (messages.size() > kMessageHistory) messages.pop_front();
+  ++messages_posted;
 }
 
 bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {

@@ -2,6 +2,7 @@
 // The state the GUI's panels and viewport share for one window: the session controller
 // (recording + execution), the stage machine, the camera, the planning drafts, the view
 // options and the message line. Panels are free functions over it (panels.hpp).
+#include <cstdint>
 #include <deque>
 #include <optional>
 #include <string>
@@ -127,7 +128,13 @@ struct GuiState {
   std::string browse_dir;
   char new_object[64] = "a";
 
-  std::deque<Message> messages;      ///< newest last; errors stay until dismissed
+  /// The message history, newest last, at most kMessageHistory (the oldest go first); errors
+  /// stay until cleared.
+  std::deque<Message> messages;
+  static constexpr std::size_t kMessageHistory = 500;
+  std::uint64_t messages_posted = 0;  ///< every message ever posted (the pane scrolls to a new one)
+  std::uint64_t messages_shown = 0;   ///< messages_posted when the pane was last drawn
+  float message_height = 80.0f;       ///< pixels; the user drags its top edge higher
   bool fit_requested = true;
   /// The 3-D view is the part of the window right of the workflow window (pixels from the
   /// left edge, set each frame by workflow_window) down to the bottom.

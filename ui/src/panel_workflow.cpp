@@ -1,4 +1,5 @@
-// Menu bar, workflow window and message line.
+// Menu bar, workflow window and message history.
+#include <algorithm>
 #include <filesystem>
 
 #include "panels.hpp"
@@ -60,18 +61,32 @@ void workflow_window(GuiState& s) {
 void message_window(GuiState& s) {
   if (s.messages.empty()) return;
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + 402, vp->WorkPos.y + vp->WorkSize.y - 86),
-                          ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(vp->WorkSize.x - 408, 80), ImGuiCond_Always);
-  ImGui::Begin("Messages", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize);
+  // Anchored to the bottom edge, right of the workflow window, across the view; the user makes
+  // it taller by dragging its top edge (up to 60 % of the window) and scrolls back through the
+  // history.
+  const float width = vp->WorkSize.x - 408;
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + 402, vp->WorkPos.y + vp->WorkSize.y - 6),
+                          ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+  s.message_height = std::clamp(s.message_height, 80.0f, std::max(80.0f, 0.6f * vp->WorkSize.y));
+  ImGui::SetNextWindowSize(ImVec2(width, s.message_height), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 80),
+                                      ImVec2(width, std::max(80.0f, 0.6f * vp->WorkSize.y)));
+  ImGui::Begin("Messages", nullptr, ImGuiWindowFlags_NoCollapse);
+  s.message_height = ImGui::GetWindowHeight();  // as the user's drag of its edge left it
+  ImGui::BeginChild("history", ImVec2(0.0f, -ImGui::GetFrameHeightWithSpacing()));
+  // Follow new messages only when the history was scrolled to its end (one reading back keeps
+  // its place).
+  const bool at_end = ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 1.0f;
   for (const auto& m : s.messages) {
     if (m.error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.1f, 0.1f, 1.0f));
     ImGui::TextWrapped("%s%s", m.error ? "Error: " : "", m.text.c_str());
     if (m.error) ImGui::PopStyleColor();
   }
+  if (s.messages_posted != s.messages_shown && at_end) ImGui::SetScrollHereY(1.0f);
+  s.messages_shown = s.messages_posted;
+  ImGui::EndChild();
   if (ImGui::Button("Clear messages")) s.messages.clear();
   s.widgets.note("Clear messages");
-  ImGui::SetScrollHereY(1.0f);
   ImGui::End();
 }
 
