@@ -157,9 +157,9 @@ void suture_controls(GuiState& s) {
 void patch_controls(GuiState& s) {
   static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
   ImGui::Combo("shape", &s.patch.shape, kShapes, 3);
-  ImGui::SliderFloat("width [mm]", &s.patch.width, 1.0f, 15.0f);
-  ImGui::SliderFloat("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 20.0f);
-  ImGui::SliderFloat("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f);
+  number_field("width [mm]", &s.patch.width, 1.0f, 15.0f, 0.5f, "%.1f");
+  number_field("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 20.0f, 0.1f);
+  number_field("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f, 0.05f);
   ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
                      s.patch.ends.size());
   const std::optional<std::string> why =
@@ -179,13 +179,13 @@ void remesh_controls(GuiState& s) {
                      "them (%zu point(s)); none: the whole object. Sutures, material borders, open ends and held "
                      "vertices are kept; the state and rest shape follow.",
                      s.remesh.points.size());
-  ImGui::SliderFloat("radius [mm]", &s.remesh.radius, 0.5f, 20.0f, "%.1f");
-  ImGui::SliderFloat("edge length [mm]", &s.remesh.target_edge_length, 0.0f, 3.0f, "%.2f");
+  number_field("radius [mm]", &s.remesh.radius, 0.5f, 20.0f, 0.5f, "%.1f");
+  number_field("edge length [mm]", &s.remesh.target_edge_length, 0.0f, 3.0f, 0.05f);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("0: the region's own mean edge length.");
-  ImGui::SliderFloat("grading", &s.remesh.grading, 1.0f, 3.0f, "%.2f");
+  number_field("grading", &s.remesh.grading, 1.0f, 3.0f, 0.1f);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Growth of the edge length per band away from the clicked points (1 = uniform).");
-  ImGui::SliderInt("iterations", &s.remesh.iterations, 1, 10);
+  number_field("iterations", &s.remesh.iterations, 1, 10);
   if (gated_button(s.widgets, s.remesh.points.empty() ? "Remesh object" : "Remesh region",
                    s.why_not(Action::Remesh, "remesh")) &&
       s.selected()) {
@@ -199,7 +199,7 @@ void remesh_controls(GuiState& s) {
 }
 
 void load_controls(GuiState& s) {
-  ImGui::SliderFloat("pressure [mmHg]", &s.pressure_mmhg, -120.0f, 120.0f, "%.0f");
+  number_field("pressure [mmHg]", &s.pressure_mmhg, -120.0f, 120.0f, 5.0f, "%.0f");
   if (gated_button(s.widgets, "Apply pressure", s.why_not(Action::EditMaterial),
                    "Follower pressure on every face, along the face normals; ramped in by the next simulation.") &&
       s.selected())
@@ -230,9 +230,9 @@ void load_controls(GuiState& s) {
 }
 
 void material_controls(GuiState& s) {
-  ImGui::SliderFloat("E [MPa]", &s.material.youngs_modulus, 0.05f, 20.0f, "%.2f");
-  ImGui::SliderFloat("Poisson", &s.material.poisson_ratio, 0.0f, 0.49f, "%.2f");
-  ImGui::SliderFloat("wall [mm]", &s.material.thickness, 0.1f, 3.0f, "%.2f");
+  number_field("E [MPa]", &s.material.youngs_modulus, 0.05f, 20.0f, 0.05f);
+  number_field("Poisson ratio", &s.material.poisson_ratio, 0.0f, 0.49f, 0.01f);
+  number_field("wall [mm]", &s.material.thickness, 0.1f, 3.0f, 0.05f);
   if (gated_button(s.widgets, "Apply material", s.why_not(Action::EditMaterial)) && s.selected())
     s.perform(material_op(s.selected()->name, s.material.youngs_modulus, s.material.poisson_ratio,
                           s.material.thickness),

@@ -36,14 +36,14 @@ void simulate_section(GuiState& s) {
   // settings below only drive a run with nothing to relax, so only the settings that apply
   // are enabled.
   ImGui::BeginDisabled(no_relax.has_value());
-  ImGui::SliderInt("relax steps", &s.simulation.relax_steps, 1, 100);
+  number_field("relax steps", &s.simulation.relax_steps, 1, 100);
   ImGui::EndDisabled();
   tooltip_for_last_item(no_relax ? *no_relax
                                  : "Increments of s (rest shape from the joined to the split "
                                    "shape). Fewer, larger increments usually need fewer Newton "
                                    "iterations in all; more give more frames of the animation.");
   ImGui::BeginDisabled(!no_relax.has_value());
-  ImGui::SliderInt("settle steps", &s.simulation.steps, 1, 400);
+  number_field("settle steps", &s.simulation.steps, 1, 400);
   tooltip_for_last_item("Implicit dynamics steps of a run with nothing to relax.");
   ImGui::InputFloat("dt [s]", &s.simulation.dt, 0.0f, 0.0f, "%.4f");
   ImGui::EndDisabled();

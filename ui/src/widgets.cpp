@@ -1,5 +1,7 @@
 #include "widgets.hpp"
 
+#include <algorithm>
+
 namespace sutura::ui {
 
 void WidgetRegistry::note(const std::string& label) {
@@ -58,6 +60,20 @@ bool noted_tree_node(WidgetRegistry& widgets, const std::string& label) {
   const bool open = ImGui::TreeNode(label.c_str());
   widgets.note(label);
   return open;
+}
+
+bool number_field(const char* label, float* value, float lo, float hi, float step, const char* format) {
+  const float before = *value;
+  ImGui::InputFloat(label, value, step, 10.0f * step, format);
+  *value = std::clamp(*value, lo, hi);
+  return *value != before;
+}
+
+bool number_field(const char* label, int* value, int lo, int hi) {
+  const int before = *value;
+  ImGui::InputInt(label, value);
+  *value = std::clamp(*value, lo, hi);
+  return *value != before;
 }
 
 }  // namespace sutura::ui

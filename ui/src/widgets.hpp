@@ -32,6 +32,12 @@ bool noted_checkbox(WidgetRegistry& widgets, const std::string& label, bool* val
 bool noted_radio(WidgetRegistry& widgets, const std::string& label, bool active);
 /// ImGui::TreeNode that records its rectangle; true when open (then call ImGui::TreePop()).
 bool noted_tree_node(WidgetRegistry& widgets, const std::string& label);
+/// A number typed in (or stepped with the - and + buttons by `step`), with its unit in the
+/// label, kept within [lo, hi]: unlike a slider, a click does not set it to where the pointer
+/// is. Returns true when the value changed.
+bool number_field(const char* label, float* value, float lo, float hi, float step,
+                  const char* format = "%.2f");
+bool number_field(const char* label, int* value, int lo, int hi);
 /// Shows `text` as tooltip of the last item when hovered, also when it is disabled.
 void tooltip_for_last_item(const std::string& text);
 
