@@ -6,6 +6,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "sutura/app/session.hpp"
 #include "sutura/ui/session_recorder.hpp"
 
 namespace fs = std::filesystem;
@@ -53,16 +54,27 @@ TEST(SessionRecorder, DropLastTakesBackOnlyItsOwnLines) {
   fs::remove(f);
 }
 
-TEST(SessionRecorder, ResumeContinuesAfterExistingLinesAndSaveAsCopies) {
-  const fs::path f = temp_file("resume");
-  { std::ofstream(f) << "{\"format\": \"sutura-session\", \"version\": 1}\n{\"op\": \"x\"}"; }
-  auto r = SessionRecorder::resume(f);
+TEST(SessionRecorder, ContinueInCopiesTheSessionAndNeverWritesIt) {
+  const fs::path from = temp_file("opened");
+  { std::ofstream(from) << "{\"format\": \"sutura-session\", \"version\": 1}\n{\"op\": \"x\"}"; }
+  const std::string opened = read(from);
+  const fs::path f = temp_file("continued");
+  auto r = SessionRecorder::continue_in(from, f);
   EXPECT_EQ(r.lines(), 2);  // the missing final newline was added
   EXPECT_EQ(r.append({{"op", "y"}}), 3);
   EXPECT_EQ(read(f), "{\"format\": \"sutura-session\", \"version\": 1}\n{\"op\": \"x\"}\n{\"op\":\"y\"}\n");
+  EXPECT_EQ(read(from), opened);
+  r.drop_last();
+  EXPECT_THROW(r.drop_last(), std::logic_error);  // the copied lines are never taken back
   const fs::path copy = temp_file("copy");
   r.save_as(copy);
   EXPECT_EQ(read(copy), read(f));
+  // Never into an existing file, the opened session itself included.
+  EXPECT_THROW(SessionRecorder::continue_in(from, from), std::runtime_error);
+  EXPECT_EQ(read(from), opened);
+  EXPECT_THROW(SessionRecorder::continue_in(temp_file("missing"), temp_file("never")), std::runtime_error);
+  EXPECT_FALSE(fs::exists(temp_file("never")));
+  fs::remove(from);
   fs::remove(f);
   fs::remove(copy);
 }
@@ -88,15 +100,16 @@ TEST(SessionRecorder, AnExistingFileIsNeverReplaced) {
 TEST(SessionRecorder, TwoRecordersNeverShareAFile) {
   const fs::path f = temp_file("shared");
   auto first = SessionRecorder::create(f, "test");
-  try {
-    SessionRecorder::resume(f);
-    FAIL() << "a second recorder opened the file";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("is being recorded by another sutura gui"), std::string::npos) << e.what();
-  }
+  EXPECT_THROW(SessionRecorder::create(f, "test"), std::runtime_error);
+  const fs::path other = temp_file("other");
+  { std::ofstream(other) << "{\"format\": \"sutura-session\", \"version\": 3}\n"; }
+  EXPECT_THROW(SessionRecorder::continue_in(other, f), std::runtime_error);
   first.append({{"op", "a"}});
   EXPECT_EQ(first.lines(), 2);
+  EXPECT_EQ(read(f), "{\"description\":\"test\",\"format\":\"sutura-session\",\"units\":\"mm\",\"version\":" +
+                         std::to_string(sutura::app::kSessionFormatVersion) + "}\n{\"op\":\"a\"}\n");
   fs::remove(f);
+  fs::remove(other);
 }
 
 TEST(SessionRecorder, AnActionThatIsNotUtf8IsRefusedAndNothingWritten) {

@@ -28,8 +28,9 @@ namespace {
 
 // A new recording in out_dir: session-<time>.jsonl, or session-<time>-2.jsonl, ... when
 // another window started in the same second (files are created exclusively: none is shared or
-// replaced).
-SessionRecorder record_new_session(const fs::path& out_dir) {
+// replaced); `start(file)` creates it.
+template <class Start>
+SessionRecorder record_new_session(const fs::path& out_dir, const Start& start) {
   const std::time_t now = std::time(nullptr);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
@@ -40,7 +41,7 @@ SessionRecorder record_new_session(const fs::path& out_dir) {
     const fs::path file = out_dir / (name + ".jsonl");
     if (fs::exists(file) && k < 1000) continue;
     try {
-      return SessionRecorder::create(file, "recorded by sutura gui");
+      return start(file);
     } catch (const std::runtime_error&) {
       if (!fs::exists(file) || k >= 1000) throw;  // not a race lost to another window
     }
@@ -148,16 +149,16 @@ void view_captions(const GuiState& s, float view_width) {
 }  // namespace
 
 int run_gui(const GuiOptions& options) {
-  // Recording: continue the given session, or start a new file.
+  // Recording: always a new file (--record, or one in the output directory); a session opened
+  // is copied into it first and continues there, itself never written.
   std::optional<app::Session> existing;
+  if (!options.session.empty()) existing = app::load_session(options.session);
+  const auto start = [&](const fs::path& file) {
+    return existing ? SessionRecorder::continue_in(options.session, file)
+                    : SessionRecorder::create(file, "recorded by sutura gui");
+  };
   std::optional<SessionRecorder> recorder;
-  if (!options.session.empty()) {
-    existing = app::load_session(options.session);
-    recorder.emplace(SessionRecorder::resume(options.session));
-  } else {
-    recorder.emplace(options.record.empty() ? record_new_session(options.out_dir)
-                                            : SessionRecorder::create(options.record, "recorded by sutura gui"));
-  }
+  recorder.emplace(options.record.empty() ? record_new_session(options.out_dir, start) : start(options.record));
   app::ReplayOptions replay_options;
   replay_options.out_dir = options.out_dir;
   replay_options.threads = options.threads;

@@ -3,11 +3,12 @@
 #include "sutura/app/session.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -22,15 +23,6 @@ namespace {
 
 [[noreturn]] void fail(const fs::path& file, const std::string& what) {
   throw std::runtime_error("session file " + file.string() + ": " + what);
-}
-
-// Takes the recording's exclusive advisory lock for as long as `out` is open: a second GUI
-// recording into the same file would interleave its lines with this one's.
-void lock_or_fail(std::FILE* out, const fs::path& file) {
-  if (::flock(::fileno(out), LOCK_EX | LOCK_NB) != 0) {
-    std::fclose(out);
-    fail(file, "is being recorded by another sutura gui; open a copy, or wait until that window is closed");
-  }
 }
 
 }  // namespace
@@ -50,14 +42,17 @@ SessionRecorder::~SessionRecorder() {
   if (out_ != nullptr) std::fclose(out_);
 }
 
-SessionRecorder SessionRecorder::create(const fs::path& file, const std::string& description) {
+namespace {
+
+// `file` created exclusively (parent directories too): an existing file (an earlier
+// recording, an input, another window's recording) is never replaced nor shared.
+std::FILE* create_exclusively(const fs::path& file) {
   if (file.has_parent_path()) fs::create_directories(file.parent_path());
-  // Exclusive creation: an existing file (an earlier recording, an input) is never replaced.
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
     if (errno == EEXIST)
       fail(file, "exists already, and a recording is never overwritten: open it to continue it "
-                 "(sutura gui " + file.string() + "), or record into a new file");
+                 "in a new file (sutura gui " + file.string() + "), or record into a new file");
     fail(file, "cannot be created");
   }
   std::FILE* out = ::fdopen(fd, "wb");
@@ -65,8 +60,13 @@ SessionRecorder SessionRecorder::create(const fs::path& file, const std::string&
     ::close(fd);
     fail(file, "cannot be created");
   }
-  lock_or_fail(out, file);
-  SessionRecorder r(file, out, 0);
+  return out;
+}
+
+}  // namespace
+
+SessionRecorder SessionRecorder::create(const fs::path& file, const std::string& description) {
+  SessionRecorder r(file, create_exclusively(file), 0);
   const nlohmann::json header = {{"format", "sutura-session"},
                                  {"version", app::kSessionFormatVersion},
                                  {"units", "mm"},
@@ -76,24 +76,21 @@ SessionRecorder SessionRecorder::create(const fs::path& file, const std::string&
   return r;
 }
 
-SessionRecorder SessionRecorder::resume(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail(file, "cannot be opened for reading");
-  int lines = 0;
-  char last = '\n';
-  for (char c; in.get(c);) {
-    if (c == '\n') ++lines;
-    last = c;
+SessionRecorder SessionRecorder::continue_in(const fs::path& from, const fs::path& file) {
+  std::ifstream in(from, std::ios::binary);
+  if (!in) fail(from, "cannot be opened for reading");
+  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail(from, "cannot be read");
+  if (!content.empty() && content.back() != '\n') content += '\n';
+  const auto lines = static_cast<int>(std::count(content.begin(), content.end(), '\n'));
+  std::FILE* out = create_exclusively(file);
+  SessionRecorder r(file, out, lines);  // closes `out` should the copy fail
+  if (std::fwrite(content.data(), 1, content.size(), out) != content.size() || std::fflush(out) != 0) {
+    std::error_code ignored;
+    fs::remove(file, ignored);  // our own new file, half written
+    fail(file, "cannot be written");
   }
-  std::FILE* out = std::fopen(file.c_str(), "ab");
-  if (out == nullptr) fail(file, "cannot be opened for appending");
-  lock_or_fail(out, file);
-  if (last != '\n') {
-    std::fputc('\n', out);
-    ++lines;
-  }
-  std::fflush(out);
-  return SessionRecorder(file, out, lines);
+  return r;
 }
 
 int SessionRecorder::append(const nlohmann::json& op) {

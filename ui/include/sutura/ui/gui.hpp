@@ -7,10 +7,11 @@
 namespace sutura::ui {
 
 struct GuiOptions {
-  /// Existing session to open: replayed to its last state, then recording continues in it.
-  /// Empty: start with no objects and record into `record`.
+  /// Existing session to open: replayed to its last state, then continued in the recording
+  /// (which starts as a copy of it); the session file itself is never written. Empty: start
+  /// with no objects.
   std::filesystem::path session;
-  /// New session file to record into when `session` is empty; empty = out_dir /
+  /// New session file to record into (never an existing one); empty = out_dir /
   /// "session-YYYYmmdd-HHMMSS.jsonl".
   std::filesystem::path record;
   std::filesystem::path out_dir = "out";  ///< snapshots, exports and report.json go inside

@@ -15,16 +15,15 @@ class SessionRecorder {
  public:
   /// Creates `file` (parent directories too) with the header line {"format":
   /// "sutura-session", "version": ..., "units": "mm", "description": ...}. Never replaces a
-  /// file: one that exists is an error (created exclusively, O_EXCL). Throws
-  /// std::runtime_error when it exists or cannot be written.
-  ///
-  /// Both create() and resume() hold an exclusive advisory lock (flock) on the file while the
-  /// recorder lives: a second recorder on the same file, in this or another process (two GUIs),
-  /// throws instead of interleaving its lines.
+  /// file: one that exists is an error (created exclusively, O_EXCL, so no two recorders, in
+  /// this process or another, ever share a file). Throws std::runtime_error when it exists or
+  /// cannot be written.
   static SessionRecorder create(const std::filesystem::path& file, const std::string& description);
-  /// Continues an existing session file: later lines are appended after its content (a
-  /// missing final newline is added first). Throws std::runtime_error when it cannot be opened.
-  static SessionRecorder resume(const std::filesystem::path& file);
+  /// Continues the session `from` in the new file `file`: `file` is created as create() does
+  /// (never an existing one) with `from`'s content (a missing final newline added), and later
+  /// lines are appended after it; `from` is only read, never written. Throws
+  /// std::runtime_error when `from` cannot be read or `file` exists or cannot be written.
+  static SessionRecorder continue_in(const std::filesystem::path& from, const std::filesystem::path& file);
 
   SessionRecorder(SessionRecorder&& other) noexcept;
   SessionRecorder& operator=(SessionRecorder&&) = delete;
