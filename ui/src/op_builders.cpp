@@ -12,9 +12,14 @@ json generate_op(const std::string& object, const std::string& shape, const json
   return op;
 }
 
-json load_op(const std::string& object, const std::string& absolute_file, bool prepare,
-             double prepare_edge_length) {
-  json op = {{"op", "load"}, {"object", object}, {"file", absolute_file}};
+json load_op(const std::string& object, const std::filesystem::path& file,
+             const std::filesystem::path& recording, bool prepare, double prepare_edge_length) {
+  namespace fs = std::filesystem;
+  const fs::path absolute = fs::absolute(file).lexically_normal();
+  const fs::path relative =
+      absolute.lexically_relative(fs::absolute(recording).parent_path().lexically_normal());
+  json op = {{"op", "load"}, {"object", object},
+             {"file", relative.empty() ? absolute.string() : relative.string()}};
   if (prepare) {
     op["prepare"] = {{"smoothing", 10}};
     if (prepare_edge_length > 0.0) op["prepare"]["edge_length"] = prepare_edge_length;

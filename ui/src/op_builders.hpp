@@ -1,6 +1,7 @@
 #pragma once
 // The session ops the GUI emits, as JSON lines in the format of docs/session-format.md.
 // Pure functions: what a click means is decided here, in one testable place.
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,10 +17,13 @@ nlohmann::json point_json(const engine::Vec3& p);
 /// {"op": "generate", "object", "shape", ...extra}; extra holds shape parameters.
 nlohmann::json generate_op(const std::string& object, const std::string& shape,
                            const nlohmann::json& extra = nlohmann::json::object());
-/// {"op": "load", "object", "file"} with an absolute file path; with `prepare`, the file is a
-/// segmentation export prepared as it loads ({"prepare": {"smoothing": 10[, "edge_length"]}},
-/// edge_length only when > 0).
-nlohmann::json load_op(const std::string& object, const std::string& absolute_file, bool prepare = false,
+/// {"op": "load", "object", "file"}, the file named relative to the directory of `recording`
+/// (a session's relative paths are read from its own directory, so a recording and the meshes
+/// beside it can move together; absolute only where no relative path leads there). With
+/// `prepare`, the file is a segmentation export prepared as it loads ({"prepare":
+/// {"smoothing": 10[, "edge_length"]}}, edge_length only when > 0).
+nlohmann::json load_op(const std::string& object, const std::filesystem::path& file,
+                       const std::filesystem::path& recording, bool prepare = false,
                        double prepare_edge_length = 0.0);
 nlohmann::json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
                            double thickness);

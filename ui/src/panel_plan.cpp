@@ -78,7 +78,7 @@ void open_controls(GuiState& s) {
     s.prepare_edge_length = std::max(0.0f, s.prepare_edge_length);
   }
   if (gated_button(s.widgets, "Open mesh", why))
-    s.perform(load_op(s.new_object, fs::absolute(s.open_path).lexically_normal().string(), s.open_prepare,
+    s.perform(load_op(s.new_object, fs::path(s.open_path), s.controller.recorder().file(), s.open_prepare,
                       static_cast<double>(s.prepare_edge_length)),
               (s.open_prepare ? "Prepared " : "Loaded ") + std::string(s.open_path));
   ImGui::SameLine();
@@ -92,11 +92,12 @@ void open_controls(GuiState& s) {
   const fs::path anatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
   if (gated_button(s.widgets, "Aortic arch", why,
                    "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces)."))
-    s.perform(load_op("aorta", (anatomy / "aorta.ply").string()), "Loaded the bundled aortic arch");
+    s.perform(load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file()),
+              "Loaded the bundled aortic arch");
   ImGui::SameLine();
   if (gated_button(s.widgets, "Pulmonary artery", why,
                    "The bundled pulmonary artery beside the arch (coarse)."))
-    s.perform(load_op("pulmonary", (anatomy / "pulmonary.ply").string()),
+    s.perform(load_op("pulmonary", anatomy / "pulmonary.ply", s.controller.recorder().file()),
               "Loaded the bundled pulmonary artery");
 }
 
