@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Loads that reached full value become part of the applied (constant) loads.
 // The pre-operative state ("before" of measurements and snapshots, the reference of
 // displacements and probes) becomes the object at `positions`, its strains those of its
 // current state on its current rest.
@@ -42,6 +41,7 @@ void require_unedited(const SceneObject& obj, const std::string& what) {
     throw std::runtime_error("'" + obj.name + "' has been incised or sutured; " + what);
 }
 
+// Loads that reached full value become part of the applied (constant) loads.
 void commit_pending_loads(SceneObject& o) {
   auto& p = o.sim.pending_loads;
   auto& a = o.sim.applied_loads;

@@ -26,6 +26,7 @@ struct SessionRunner::Impl {
       : header(std::move(h)), options(std::move(o)),
         run{header, options, {}, {}, json::array(), json::array(),
             json::object(), json::array(), json::object(), {}, {}, {header.file}} {
+    run.inputs.insert(run.inputs.end(), options.protected_inputs.begin(), options.protected_inputs.end());
     if (options.time_limit > 0)
       run.deadline = start + std::chrono::duration_cast<clock_type::duration>(
                                  std::chrono::duration<double>(options.time_limit));

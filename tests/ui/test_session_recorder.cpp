@@ -79,6 +79,39 @@ TEST(SessionRecorder, ContinueInCopiesTheSessionAndNeverWritesIt) {
   fs::remove(copy);
 }
 
+// A session's relative mesh paths are read from its own directory: a copy elsewhere (the
+// recording that continues it, Save session as) names them again so that they reach the same
+// meshes.
+TEST(SessionRecorder, CopiesElsewhereKeepTheirMeshes) {
+  const fs::path dir = fs::temp_directory_path() / ("sutura_rec_rebase_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "patient");
+  std::ofstream(dir / "patient" / "vessel.ply") << "x";
+  const fs::path opened = dir / "patient" / "plan.jsonl";
+  const std::string header = "{\"format\": \"sutura-session\", \"version\": 3}\n";
+  const std::string fix = "{\"op\": \"fix\", \"object\": \"a\", \"boundary\": \"all\"}\n";
+  { std::ofstream(opened) << header << "{\"op\": \"load\", \"object\": \"a\", \"file\": \"vessel.ply\"}\n" << fix; }
+  const std::string before = read(opened);
+  auto r = SessionRecorder::continue_in(opened, dir / "out" / "rec.jsonl");
+  const std::string absolute = (dir / "patient" / "vessel.ply").string();
+  EXPECT_EQ(read(dir / "out" / "rec.jsonl"),
+            header + "{\"file\":\"" + absolute + "\",\"object\":\"a\",\"op\":\"load\"}\n" + fix);
+  EXPECT_EQ(read(opened), before);
+  // Saved elsewhere, an absolute path stays as it is, and the copy reaches the mesh; onto the
+  // opened session, refused.
+  r.save_as(dir / "copy.jsonl");
+  EXPECT_EQ(read(dir / "copy.jsonl"), read(dir / "out" / "rec.jsonl"));
+  EXPECT_THROW(r.save_as(opened), std::runtime_error);
+  EXPECT_EQ(read(opened), before);
+  // Continued beside it, the relative path stays; saved one directory down, it is named again.
+  auto beside = SessionRecorder::continue_in(opened, dir / "patient" / "rec2.jsonl");
+  EXPECT_EQ(read(dir / "patient" / "rec2.jsonl"), before);
+  beside.save_as(dir / "patient" / "sub" / "copy.jsonl");
+  EXPECT_EQ(read(dir / "patient" / "sub" / "copy.jsonl"),
+            header + "{\"file\":\"" + absolute + "\",\"object\":\"a\",\"op\":\"load\"}\n" + fix);
+  fs::remove_all(dir);
+}
+
 // Nothing is lost (issue 27): a recording is never replaced nor shared, an action that cannot
 // be written as JSON is refused before anything is written, and Save as never writes onto the
 // recording.

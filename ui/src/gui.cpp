@@ -161,6 +161,7 @@ int run_gui(const GuiOptions& options) {
   recorder.emplace(options.record.empty() ? record_new_session(options.out_dir, start) : start(options.record));
   app::ReplayOptions replay_options;
   replay_options.out_dir = options.out_dir;
+  if (existing) replay_options.protected_inputs.push_back(options.session);
   replay_options.threads = options.threads;
   SessionController controller(std::move(*recorder), replay_options);
   if (existing) {

@@ -12,14 +12,21 @@ json generate_op(const std::string& object, const std::string& shape, const json
   return op;
 }
 
+std::filesystem::path path_from(const std::filesystem::path& file, const std::filesystem::path& session) {
+  namespace fs = std::filesystem;
+  const fs::path absolute = fs::absolute(file).lexically_normal();
+  const fs::path dir = fs::absolute(session).parent_path().lexically_normal();
+  const fs::path relative = absolute.lexically_relative(dir);
+  std::error_code ec;
+  if (relative.empty() || *relative.begin() == ".." || !fs::equivalent(dir / relative, absolute, ec))
+    return absolute;
+  return relative;
+}
+
 json load_op(const std::string& object, const std::filesystem::path& file,
              const std::filesystem::path& recording, bool prepare, double prepare_edge_length) {
   namespace fs = std::filesystem;
-  const fs::path absolute = fs::absolute(file).lexically_normal();
-  const fs::path relative =
-      absolute.lexically_relative(fs::absolute(recording).parent_path().lexically_normal());
-  json op = {{"op", "load"}, {"object", object},
-             {"file", relative.empty() ? absolute.string() : relative.string()}};
+  json op = {{"op", "load"}, {"object", object}, {"file", path_from(file, recording).string()}};
   if (prepare) {
     op["prepare"] = {{"smoothing", 10}};
     if (prepare_edge_length > 0.0) op["prepare"]["edge_length"] = prepare_edge_length;

@@ -17,9 +17,12 @@ nlohmann::json point_json(const engine::Vec3& p);
 /// {"op": "generate", "object", "shape", ...extra}; extra holds shape parameters.
 nlohmann::json generate_op(const std::string& object, const std::string& shape,
                            const nlohmann::json& extra = nlohmann::json::object());
-/// {"op": "load", "object", "file"}, the file named relative to the directory of `recording`
-/// (a session's relative paths are read from its own directory, so a recording and the meshes
-/// beside it can move together; absolute only where no relative path leads there). With
+/// How the session file `session` names `file`: relative to the session's directory when the
+/// file lies inside it (a session's relative paths are read from its own directory, so a
+/// session and the meshes beside it can move together), otherwise absolute. A file that does
+/// not exist, or that the relative path would not reach (symbolic links), is named absolute.
+std::filesystem::path path_from(const std::filesystem::path& file, const std::filesystem::path& session);
+/// {"op": "load", "object", "file"}, the file named by path_from(file, recording). With
 /// `prepare`, the file is a segmentation export prepared as it loads ({"prepare":
 /// {"smoothing": 10[, "edge_length"]}}, edge_length only when > 0).
 nlohmann::json load_op(const std::string& object, const std::filesystem::path& file,

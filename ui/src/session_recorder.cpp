@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "op_builders.hpp"
 #include "sutura/engine/atomic_file.hpp"
 
 namespace sutura::ui {
@@ -32,6 +33,7 @@ SessionRecorder::SessionRecorder(fs::path file, std::FILE* out, int lines)
 
 SessionRecorder::SessionRecorder(SessionRecorder&& other) noexcept
     : file_(std::move(other.file_)),
+      opened_(std::move(other.opened_)),
       out_(other.out_),
       lines_(other.lines_),
       line_starts_(std::move(other.line_starts_)) {
@@ -43,6 +45,37 @@ SessionRecorder::~SessionRecorder() {
 }
 
 namespace {
+
+// `content` (a session's lines, read from `from`) as the file `to` must hold them: a load op's
+// relative mesh path is read from its session's own directory, so it is named again as seen
+// from `to` (path_from: relative inside `to`'s directory, else absolute); every other line is
+// kept byte for byte.
+std::string rebased(const std::string& content, const fs::path& from, const fs::path& to) {
+  const fs::path from_dir = fs::absolute(from).parent_path().lexically_normal();
+  if (from_dir == fs::absolute(to).parent_path().lexically_normal()) return content;
+  std::string out;
+  out.reserve(content.size());
+  for (std::size_t start = 0; start < content.size();) {
+    const std::size_t end = content.find('\n', start);
+    const std::size_t stop = end == std::string::npos ? content.size() : end + 1;
+    std::string line = content.substr(start, stop - start);
+    start = stop;
+    if (line.find("\"load\"") != std::string::npos) {
+      try {
+        nlohmann::json j = nlohmann::json::parse(line);
+        if (j.is_object() && j.value("op", "") == "load" && j.contains("file") && j["file"].is_string() &&
+            fs::path(j["file"].get<std::string>()).is_relative()) {
+          j["file"] = path_from(from_dir / j["file"].get<std::string>(), to).string();
+          line = j.dump() + (end == std::string::npos ? "" : "\n");
+        }
+      } catch (const nlohmann::json::exception&) {
+        // Not a line this can read: kept as it is (the replay names its error).
+      }
+    }
+    out += line;
+  }
+  return out;
+}
 
 // `file` created exclusively (parent directories too): an existing file (an earlier
 // recording, an input, another window's recording) is never replaced nor shared.
@@ -82,9 +115,11 @@ SessionRecorder SessionRecorder::continue_in(const fs::path& from, const fs::pat
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) fail(from, "cannot be read");
   if (!content.empty() && content.back() != '\n') content += '\n';
+  content = rebased(content, from, file);
   const auto lines = static_cast<int>(std::count(content.begin(), content.end(), '\n'));
   std::FILE* out = create_exclusively(file);
   SessionRecorder r(file, out, lines);  // closes `out` should the copy fail
+  r.opened_ = from;
   if (std::fwrite(content.data(), 1, content.size(), out) != content.size() || std::fflush(out) != 0) {
     std::error_code ignored;
     fs::remove(file, ignored);  // our own new file, half written
@@ -125,13 +160,17 @@ void SessionRecorder::save_as(const fs::path& target) const {
   std::error_code ec;
   if (fs::equivalent(file_, target, ec))
     throw std::runtime_error("cannot save the session as " + target.string() + ": it is the recording itself");
+  if (!opened_.empty() && fs::equivalent(opened_, target, ec))
+    throw std::runtime_error("cannot save the session as " + target.string() +
+                             ": it is the session opened, which is never written");
   if (target.has_parent_path()) fs::create_directories(target.parent_path(), ec);
   std::ifstream in(file_, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   if (!in) throw std::runtime_error("cannot save the session as " + target.string() + ": the recording cannot be read");
   try {
-    engine::write_file_atomically(target, text.str());  // a reader never sees half a file
+    // A reader never sees half a file.
+    engine::write_file_atomically(target, rebased(text.str(), file_, target));
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot save the session as " + target.string() + ": " + e.what());
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <thread>
@@ -23,7 +24,6 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include "sutura/engine/compute_threads.hpp"
-#include "sutura/engine/errors.hpp"
 #include "sutura/engine/surgery/surface_point.hpp"
 
 namespace sutura::engine::detail {
@@ -358,7 +358,8 @@ struct Half {
 // coarsened with the cut held, on a second thread when the compute threads allow, and the halves
 // are joined again along the cut, whose vertices are the whole mesh's. The cut depends on the
 // input only, so the result is the same on one thread as on two. The cut stays at the input's
-// resolution; the remeshing that follows evens it out.
+// resolution; the remeshing that follows evens it out. Should a half or the joined surface not
+// be a manifold, the whole mesh is coarsened in one pass instead.
 template <class EdgeMap, class IdMap, class FaceMap, class PatchMap>
 void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, PatchMap& patch,
              double below, std::size_t in_halves_from) {
@@ -389,6 +390,7 @@ void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, Patch
   // the first half, round by round; should pinches remain, one pass over the whole mesh.
   std::vector<int> ring;
   const auto pinched = [&](VI v) {
+    if (mesh.halfedge(v) == Mesh::null_halfedge()) return false;  // no face: nothing to pinch
     ring.clear();
     for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
       ring.push_back(f == Mesh::null_face() ? -1 : second[f.idx()]);
@@ -433,7 +435,12 @@ void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, Patch
         }
         corners[static_cast<std::size_t>(c++)] = local[v.idx()];
       }
-      half.patch[half.mesh.add_face(corners[0], corners[1], corners[2])] = patch[f];
+      const FI added = half.mesh.add_face(corners[0], corners[1], corners[2]);
+      if (added == Mesh::null_face()) {  // not a manifold half after all: one pass instead
+        collapse_shortest(mesh, econ, old_id, below, false);
+        return;
+      }
+      half.patch[added] = patch[f];
     }
     for (EI e : half.mesh.edges()) {
       const VI a(static_cast<Mesh::size_type>(half.whole[half.mesh.vertex(e, 0)]));
@@ -475,44 +482,65 @@ void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, Patch
     run(1);
   }
 
-  // Join: the vertices on held edges (the cut and the whole mesh's constraints) are whole-mesh
-  // vertices and are shared; every other vertex is its half's own.
-  std::vector<int> old_of(mesh.num_vertices(), -1);
-  for (VI v : mesh.vertices()) old_of[v.idx()] = old_id[v];
-  std::vector<VI> joined(mesh.num_vertices(), Mesh::null_vertex());
-  mesh.clear_without_removing_property_maps();
+  // Join, first into plain arrays: the vertices on held edges (the cut and the whole mesh's
+  // constraints) are whole-mesh vertices and are shared; every other vertex is its half's own.
+  std::vector<Point> points;
+  std::vector<int> old;
+  std::vector<std::array<std::size_t, 3>> faces;
+  std::vector<int> face_patch;
+  std::vector<std::pair<std::size_t, std::size_t>> given;
+  std::vector<std::size_t> joined(mesh.num_vertices(), SIZE_MAX);
   for (Half& half : halves) {
     auto pinned = half.mesh.add_property_map<VI, bool>("v:pinned", false).first;
     for (EI e : half.mesh.edges())
       if (half.held[e]) pinned[half.mesh.vertex(e, 0)] = pinned[half.mesh.vertex(e, 1)] = true;
-    std::vector<VI> to(half.mesh.num_vertices(), Mesh::null_vertex());
+    std::vector<std::size_t> to(half.mesh.num_vertices(), SIZE_MAX);
     for (VI v : half.mesh.vertices()) {
       const auto w = static_cast<std::size_t>(half.whole[v]);
-      if (pinned[v] && joined[w] != Mesh::null_vertex()) {
+      if (pinned[v] && joined[w] != SIZE_MAX) {
         to[v.idx()] = joined[w];
         continue;
       }
-      const VI n = mesh.add_vertex(half.mesh.point(v));
-      old_id[n] = old_of[w];
-      to[v.idx()] = n;
-      if (pinned[v]) joined[w] = n;
+      to[v.idx()] = points.size();
+      points.push_back(half.mesh.point(v));
+      old.push_back(old_id[VI(static_cast<Mesh::size_type>(w))]);
+      if (pinned[v]) joined[w] = to[v.idx()];
     }
     for (FI f : half.mesh.faces()) {
-      std::array<VI, 3> corners;
+      std::array<std::size_t, 3> corners{};
       int c = 0;
       for (VI v : CGAL::vertices_around_face(half.mesh.halfedge(f), half.mesh))
         corners[static_cast<std::size_t>(c++)] = to[v.idx()];
-      const FI n = mesh.add_face(corners[0], corners[1], corners[2]);
-      if (n == Mesh::null_face())
-        throw TopologyError("remeshing: the two coarsened halves do not join into a manifold");
-      patch[n] = half.patch[f];
-      in_region[n] = true;
+      faces.push_back(corners);
+      face_patch.push_back(half.patch[f]);
     }
     for (EI e : half.mesh.edges())
-      if (half.given[e])
-        econ[mesh.edge(mesh.halfedge(to[half.mesh.vertex(e, 0).idx()],
-                                     to[half.mesh.vertex(e, 1).idx()]))] = true;
+      if (half.given[e]) given.emplace_back(to[half.mesh.vertex(e, 0).idx()], to[half.mesh.vertex(e, 1).idx()]);
   }
+  // The joined surface must be a manifold; should it not be, the whole mesh (still untouched)
+  // is coarsened in one pass instead.
+  {
+    Mesh check;
+    for (const Point& p : points) check.add_vertex(p);
+    for (const auto& f : faces)
+      if (check.add_face(VI(static_cast<Mesh::size_type>(f[0])), VI(static_cast<Mesh::size_type>(f[1])),
+                         VI(static_cast<Mesh::size_type>(f[2]))) == Mesh::null_face()) {
+        collapse_shortest(mesh, econ, old_id, below, false);
+        return;
+      }
+  }
+  // The same additions in the same order into the (cleared) mesh, with its property maps.
+  mesh.clear_without_removing_property_maps();
+  for (std::size_t v = 0; v < points.size(); ++v) old_id[mesh.add_vertex(points[v])] = old[v];
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    const auto& f = faces[k];
+    const FI n = mesh.add_face(VI(static_cast<Mesh::size_type>(f[0])), VI(static_cast<Mesh::size_type>(f[1])),
+                               VI(static_cast<Mesh::size_type>(f[2])));
+    patch[n] = face_patch[k];
+    in_region[n] = true;
+  }
+  for (const auto& [a, b] : given)
+    econ[mesh.edge(mesh.halfedge(VI(static_cast<Mesh::size_type>(a)), VI(static_cast<Mesh::size_type>(b))))] = true;
 }
 
 }  // namespace

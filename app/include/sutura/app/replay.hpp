@@ -42,6 +42,9 @@ class OpCancelled : public std::runtime_error {
 
 struct ReplayOptions {
   std::filesystem::path out_dir = "out";  ///< every output goes inside; created if missing
+  /// Files no output may write besides the session itself and the meshes it reads (the GUI:
+  /// the session it opened and continues in a new recording).
+  std::vector<std::filesystem::path> protected_inputs;
   std::ostream* progress = nullptr;       ///< one line per action; nullptr = silent
   /// Called by long ops before each step, on the thread running the op (the GUI's worker);
   /// may block (pause). Return false to cancel the op (it then throws OpCancelled).

@@ -20,8 +20,9 @@ class SessionRecorder {
   /// cannot be written.
   static SessionRecorder create(const std::filesystem::path& file, const std::string& description);
   /// Continues the session `from` in the new file `file`: `file` is created as create() does
-  /// (never an existing one) with `from`'s content (a missing final newline added), and later
-  /// lines are appended after it; `from` is only read, never written. Throws
+  /// (never an existing one) with `from`'s content (a missing final newline added; a load op's
+  /// relative mesh path named again from `file`'s directory, so it reaches the same mesh), and
+  /// later lines are appended after it; `from` is only read, never written. Throws
   /// std::runtime_error when `from` cannot be read or `file` exists or cannot be written.
   static SessionRecorder continue_in(const std::filesystem::path& from, const std::filesystem::path& file);
 
@@ -39,8 +40,9 @@ class SessionRecorder {
   /// Throws std::logic_error when there is no such line.
   void drop_last();
   /// Copies the file as it is now to `target` (File > Save session as), atomically (a
-  /// temporary file renamed over it); recording goes on in the original file. Throws
-  /// std::runtime_error on failure or when `target` is the recording itself.
+  /// temporary file renamed over it), relative mesh paths named again from `target`'s
+  /// directory; recording goes on in the original file. Throws std::runtime_error on failure
+  /// or when `target` is the recording itself or the session it continues.
   void save_as(const std::filesystem::path& target) const;
 
   [[nodiscard]] const std::filesystem::path& file() const { return file_; }
@@ -50,6 +52,7 @@ class SessionRecorder {
   SessionRecorder(std::filesystem::path file, std::FILE* out, int lines);
 
   std::filesystem::path file_;
+  std::filesystem::path opened_;  ///< the session continued here (continue_in); empty: none
   std::FILE* out_ = nullptr;
   int lines_ = 0;
   std::vector<long> line_starts_;  ///< byte offsets of the lines appended by this recorder
