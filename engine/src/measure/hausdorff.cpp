@@ -5,7 +5,6 @@
 #include <exception>
 #include <string>
 #include <system_error>
-#include <thread>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -13,7 +12,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
-#include "sutura/engine/compute_threads.hpp"
+#include "../run_pair.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::engine {
@@ -102,34 +101,7 @@ HausdorffDistance hausdorff_distance(const SurfaceMesh& a, const SurfaceMesh& b,
     ta.accelerate_distance_queries();
     one_side(b, ta, spacing, h.b_to_a, h.b_to_a_at, h.mean_b_to_a, h.samples_b);
   };
-  std::thread other;
-  std::exception_ptr failure;
-  if (compute_threads().openmp > 1) {
-    try {
-      other = std::thread([&] {
-        try {
-          b_side();
-        } catch (...) {
-          failure = std::current_exception();
-        }
-      });
-    } catch (const std::system_error&) {
-      // No thread to be had: both sides on this one.
-    }
-  }
-  if (other.joinable()) {
-    try {
-      a_side();
-    } catch (...) {
-      other.join();
-      throw;
-    }
-    other.join();
-    if (failure) std::rethrow_exception(failure);
-  } else {
-    a_side();
-    b_side();
-  }
+  detail::run_pair(a_side, b_side);
   h.symmetric = std::max(h.a_to_b, h.b_to_a);
   return h;
 }

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <thread>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_segment_primitive.h>
@@ -23,7 +22,7 @@
 #include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
-#include "sutura/engine/compute_threads.hpp"
+#include "../run_pair.hpp"
 #include "sutura/engine/surgery/surface_point.hpp"
 
 namespace sutura::engine::detail {
@@ -453,34 +452,7 @@ void coarsen(Mesh& mesh, EdgeMap& econ, IdMap& old_id, FaceMap& in_region, Patch
     Half& half = halves[static_cast<std::size_t>(k)];
     collapse_shortest(half.mesh, half.held, half.whole, below, true);
   };
-  std::thread other;
-  std::exception_ptr failure;
-  if (compute_threads().openmp > 1) {
-    try {
-      other = std::thread([&] {
-        try {
-          run(1);
-        } catch (...) {
-          failure = std::current_exception();
-        }
-      });
-    } catch (const std::system_error&) {
-      // No thread to be had: both halves on this one.
-    }
-  }
-  if (other.joinable()) {
-    try {
-      run(0);
-    } catch (...) {
-      other.join();
-      throw;
-    }
-    other.join();
-    if (failure) std::rethrow_exception(failure);
-  } else {
-    run(0);
-    run(1);
-  }
+  run_pair([&] { run(0); }, [&] { run(1); });
 
   // Join, first into plain arrays: the vertices on held edges (the cut and the whole mesh's
   // constraints) are whole-mesh vertices and are shared; every other vertex is its half's own.

@@ -81,8 +81,8 @@ struct PrepareParams {
   double crease_angle_deg = 45.0;
   /// From this many faces on, the first coarsening of the remeshing (shortest edges collapsed
   /// to half the target) runs in two halves of the surface, on two threads when the compute
-  /// threads allow; the result is the same on any thread count. Below the default, one pass
-  /// takes under about three seconds and the halves would not pay for their cut.
+  /// threads allow; the result is the same on any thread count. Below the default, the halves
+  /// would not pay for their cut (docs/performance.md).
   std::size_t coarsen_in_halves_from = 200'000;
   /// The most faces the result may hold: a target that would exceed it (estimated from the
   /// area) is refused before remeshing, and a result that does (the curvature refinement adds
