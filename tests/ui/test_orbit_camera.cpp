@@ -49,3 +49,35 @@ TEST(OrbitCamera, ProjectInvertsRayThrough) {
   std::array<float, 2> px{};
   EXPECT_FALSE(cam.project(vec(cam.camera().eye) - 5.0 * (vec(cam.camera().target) - vec(cam.camera().eye)), 100, 100, px));
 }
+
+TEST(OrbitCamera, StandardViewsLookFromWhereTheyAreNamed) {
+  // Patient frame: +x left, +y posterior, +z superior. Each view: the direction the eye looks
+  // along, and the world direction that shows to the right on screen.
+  struct Case {
+    ui::StandardView view;
+    engine::Vec3 look, right;
+  };
+  const double c89 = std::cos(89.0 * M_PI / 180.0), s89 = std::sin(89.0 * M_PI / 180.0);
+  for (const Case& k : {Case{ui::StandardView::Anterior, {0, 1, 0}, {1, 0, 0}},
+                        Case{ui::StandardView::Posterior, {0, -1, 0}, {-1, 0, 0}},
+                        Case{ui::StandardView::LeftLateral, {-1, 0, 0}, {0, 1, 0}},
+                        Case{ui::StandardView::RightLateral, {1, 0, 0}, {0, -1, 0}},
+                        Case{ui::StandardView::Superior, {0, c89, -s89}, {1, 0, 0}},
+                        Case{ui::StandardView::Inferior, {0, c89, s89}, {1, 0, 0}}}) {
+    ui::OrbitCamera cam;
+    cam.fit(kBounds, 1.0f);
+    cam.orbit(123, -45);  // wherever it looked before
+    const render::Camera before = cam.camera();
+    cam.look_from(k.view);
+    const render::Camera c = cam.camera();
+    const engine::Vec3 look = (vec(c.target) - vec(c.eye)).normalized();
+    EXPECT_LT((look - k.look).norm(), 1e-6) << ui::to_string(k.view);
+    EXPECT_LT((vec(c.target) - vec(before.target)).norm(), 1e-6);  // target and distance kept
+    EXPECT_NEAR((vec(c.target) - vec(c.eye)).norm(), (vec(before.target) - vec(before.eye)).norm(), 1e-4);
+    std::array<float, 2> centre{}, right{};
+    ASSERT_TRUE(cam.project(vec(c.target), 800, 800, centre));
+    ASSERT_TRUE(cam.project(vec(c.target) + k.right, 800, 800, right));
+    EXPECT_GT(right[0] - centre[0], 1.0f) << ui::to_string(k.view);
+    EXPECT_NEAR(right[1], centre[1], 1e-2) << ui::to_string(k.view);
+  }
+}

@@ -100,6 +100,10 @@ void refresh_view(GuiState& s, float aspect) {
     s.camera.fit(bounds_of(s.view.current()), aspect);
     s.fit_requested = false;
   }
+  if (s.view_requested) {
+    s.camera.look_from(*s.view_requested);
+    s.view_requested.reset();
+  }
 }
 
 // Draws the 3-D view into framebuffer columns [x0, x0 + width); columns left of it (under
@@ -252,6 +256,7 @@ int run_gui(const GuiOptions& options) {
       message_window(s);
       const float view_width = std::max(1.0f, float(width) - s.view_left);
       refresh_view(s, view_width / float(height));
+      view_bar(s, view_width);
       viewport_input(s, view_width, float(height));
       view_captions(s, view_width);
     } catch (const std::exception& e) {

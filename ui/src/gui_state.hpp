@@ -2,6 +2,7 @@
 // The state the GUI's panels and viewport share for one window: the session controller
 // (recording + execution), the stage machine, the camera, the planning drafts, the view
 // options and the message line. Panels are free functions over it (panels.hpp).
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -30,7 +31,8 @@ struct IncisionDraft {
 
 /// Two boundary chains picked as from/to points; filled in click order a.from, a.to, b.from, b.to.
 struct SutureDraft {
-  std::vector<engine::Vec3> clicks;
+  std::vector<engine::Vec3> clicks;  ///< in click order; orient_suture_clicks reads them
+  std::array<bool, 2> long_way = {false, false};  ///< per side: the longer arc between its ends
   bool onto_b = false;  ///< join placement onto_b: side A is drawn onto side B (a flap)
 };
 
@@ -136,6 +138,8 @@ struct GuiState {
   std::uint64_t messages_shown = 0;   ///< messages_posted when the pane was last drawn
   float message_height = 80.0f;       ///< pixels; the user drags its top edge higher
   bool fit_requested = true;
+  /// Applied after the fit: the camera looks from this standard view (View menu, view bar).
+  std::optional<StandardView> view_requested;
   /// The 3-D view is the part of the window right of the workflow window (pixels from the
   /// left edge, set each frame by workflow_window) down to the bottom.
   float view_left = 0.0f;

@@ -49,6 +49,31 @@ void OrbitCamera::pan(float dx_px, float dy_px, float height_px) {
   target_ += px * (-double(dx_px) * right + double(dy_px) * up);
 }
 
+const char* to_string(StandardView v) {
+  switch (v) {
+    case StandardView::Anterior: return "Anterior";
+    case StandardView::Posterior: return "Posterior";
+    case StandardView::LeftLateral: return "Left lateral";
+    case StandardView::RightLateral: return "Right lateral";
+    case StandardView::Superior: return "Superior";
+    case StandardView::Inferior: return "Inferior";
+  }
+  return "?";
+}
+
+void OrbitCamera::look_from(StandardView view) {
+  constexpr double pi = std::numbers::pi;
+  // forward() = (cos pitch sin yaw, cos pitch cos yaw, -sin pitch): yaw 0 looks along +y.
+  switch (view) {
+    case StandardView::Anterior: yaw_ = 0.0, pitch_ = 0.0; break;
+    case StandardView::Posterior: yaw_ = pi, pitch_ = 0.0; break;
+    case StandardView::LeftLateral: yaw_ = -0.5 * pi, pitch_ = 0.0; break;
+    case StandardView::RightLateral: yaw_ = 0.5 * pi, pitch_ = 0.0; break;
+    case StandardView::Superior: yaw_ = 0.0, pitch_ = kMaxPitch; break;
+    case StandardView::Inferior: yaw_ = 0.0, pitch_ = -kMaxPitch; break;
+  }
+}
+
 void OrbitCamera::zoom(float steps) {
   distance_ = std::clamp(distance_ * std::pow(0.9, double(steps)), 1e-3, 1e6);
 }
@@ -74,6 +99,10 @@ engine::Ray OrbitCamera::ray_through(float x, float y, float width, float height
   r.origin = target_ - distance_ * f;
   r.direction = (f + ndc_x * half_w * right + ndc_y * half_h * up).normalized();
   return r;
+}
+
+double OrbitCamera::radians_per_pixel(float height_px) const {
+  return 2.0 * std::atan(std::tan(0.5 * fov_y_deg_ * std::numbers::pi / 180.0) / std::max(1.0f, height_px));
 }
 
 bool OrbitCamera::project(const Vec3& p, float width, float height,

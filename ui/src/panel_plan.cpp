@@ -1,5 +1,6 @@
 // The Plan section: objects, opening meshes, planning tools, material, undo/redo.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "panels.hpp"
@@ -133,17 +134,22 @@ void incise_controls(GuiState& s) {
 }
 
 void suture_controls(GuiState& s) {
-  static const char* kSteps[] = {"side A: click its first boundary vertex",
-                                 "side A: click its last boundary vertex",
-                                 "side B: click its first boundary vertex",
-                                 "side B: click its last boundary vertex",
+  static const char* kSteps[] = {"click one end of side A",
+                                 "click the other end of side A",
+                                 "click one end of side B",
+                                 "click the other end of side B",
                                  "both sides chosen: Join (or Enter)"};
-  ImGui::TextWrapped("Chains run along the boundary with the mesh on their left. Next: %s.",
+  ImGui::TextWrapped("Click the two ends of each side, in either order; each side takes the "
+                     "shorter way along the boundary between them, and the surface's orientation "
+                     "decides which ends meet (grey lines). Next: %s.",
                      kSteps[std::min<std::size_t>(s.suture.clicks.size(), 4)]);
   if (const auto* obj = s.selected()) {
-    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks);
+    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way);
     for (const auto& line : p.lines) ImGui::TextWrapped("%s", line.c_str());
   }
+  noted_checkbox(s.widgets, "Side A the long way round", &s.suture.long_way[0]);
+  ImGui::SameLine();
+  noted_checkbox(s.widgets, "Side B the long way round", &s.suture.long_way[1]);
   noted_checkbox(s.widgets, "Draw side A onto side B (flap)", &s.suture.onto_b);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Side B stays; side A and the tissue behind it follow as rigidly as "
@@ -293,19 +299,31 @@ void commit_incision(GuiState& s) {
 
 void commit_suture(GuiState& s) {
   if (s.tool != Tool::Suture || s.suture.clicks.size() < 4 || !s.selected()) {
-    s.error("A suture needs two chains: click first and last vertex of each side.");
+    s.error("A suture needs two chains: click both ends of each side.");
     return;
   }
-  const auto& c = s.suture.clicks;
-  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}, s.suture.onto_b),
-                "Suture joined"))
+  // Recorded in the boundary direction, so the session says exactly which arcs were joined.
+  const auto& mesh = s.selected()->mesh;
+  const auto c = orient_suture_clicks(mesh, s.suture.clicks, s.suture.long_way);
+  std::string done = "Suture joined";
+  const SuturePreview p = preview_suture(mesh, s.suture.clicks, s.suture.long_way);
+  if (p.chains.size() == 2) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " (side A %zu vertices, %.1f mm; side B %zu vertices, %.1f mm)",
+                  p.chains[0].size(), p.lengths[0], p.chains[1].size(), p.lengths[1]);
+    done += buf;
+  }
+  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}, s.suture.onto_b), done)) {
     s.suture.clicks.clear();
+    s.suture.long_way = {false, false};
+  }
 }
 
 void cancel_draft(GuiState& s) {
   s.fix.clicks.clear();
   s.incision.points.clear();
   s.suture.clicks.clear();
+  s.suture.long_way = {false, false};
   s.patch.ends.clear();
   s.remesh.points.clear();
 }

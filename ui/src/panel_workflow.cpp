@@ -6,6 +6,12 @@
 
 namespace sutura::ui {
 
+namespace {
+constexpr StandardView kStandardViews[] = {StandardView::Anterior,     StandardView::Posterior,
+                                           StandardView::LeftLateral,  StandardView::RightLateral,
+                                           StandardView::Superior,     StandardView::Inferior};
+}  // namespace
+
 void menu_bar(GuiState& s) {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
@@ -26,6 +32,8 @@ void menu_bar(GuiState& s) {
   }
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Fit view", "F")) s.fit_requested = true;
+    for (const StandardView v : kStandardViews)
+      if (ImGui::MenuItem(to_string(v))) s.fit_requested = true, s.view_requested = v;
     ImGui::MenuItem("Wireframe", nullptr, &s.wireframe);
     ImGui::EndMenu();
   }
@@ -33,6 +41,23 @@ void menu_bar(GuiState& s) {
   ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
               s.controller.recorder().file().filename().c_str());
   ImGui::EndMainMenuBar();
+}
+
+void view_bar(GuiState& s, float view_width) {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ImGui::SetNextWindowPos(ImVec2(s.view_left + view_width - 8.0f, vp->Pos.y + ImGui::GetFrameHeight() + 6.0f),
+                          ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  ImGui::Begin("##views", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                   ImGuiWindowFlags_NoNav);
+  ImGui::TextUnformatted("View from:");
+  for (const StandardView v : kStandardViews) {
+    ImGui::SameLine();
+    if (gated_button(s.widgets, to_string(v), std::nullopt)) s.fit_requested = true, s.view_requested = v;
+  }
+  ImGui::End();
 }
 
 void workflow_window(GuiState& s) {

@@ -11,6 +11,8 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
+/// A row of standard-view buttons at the top right of the 3-D view (`view_width` pixels wide).
+void view_bar(GuiState& s, float view_width);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
 

@@ -1,5 +1,6 @@
 #include "scene_picker.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace sutura::ui {
@@ -12,12 +13,23 @@ void ScenePicker::rebuild(const std::vector<const engine::SurfaceMesh*>& meshes)
     e.mesh = m;
     e.bvh = engine::TriangleBvh(*m);
     e.loops = m->boundary_loops();
+    const double cos_turn = std::cos(kCornerTurnDeg * M_PI / 180.0);
+    for (std::size_t l = 0; l < e.loops.size(); ++l) {
+      const auto& loop = e.loops[l];
+      const std::size_t n = loop.size();
+      for (std::size_t i = 0; i < n && n >= 3; ++i) {
+        const engine::Vec3 in = m->position(loop[i]) - m->position(loop[(i + n - 1) % n]);
+        const engine::Vec3 out = m->position(loop[(i + 1) % n]) - m->position(loop[i]);
+        const double norms = in.norm() * out.norm();
+        if (norms > 0.0 && in.dot(out) < cos_turn * norms) e.corners.emplace_back(int(l), loop[i]);
+      }
+    }
     e.reach = 3.0 * m->mean_edge_length();
     entries_.push_back(std::move(e));
   }
 }
 
-std::optional<Pick> ScenePicker::pick(const engine::Ray& ray) const {
+std::optional<Pick> ScenePicker::pick(const engine::Ray& ray, double corner_snap) const {
   std::optional<Pick> best;
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     const auto hit = entries_[i].bvh.intersect(ray, 0.0, best ? best->hit.t : std::numeric_limits<double>::infinity());
@@ -41,6 +53,15 @@ std::optional<Pick> ScenePicker::pick(const engine::Ray& ray) const {
           p.boundary_vertex = v;
         }
       }
+    double best_corner = std::pow(hit->t * std::tan(corner_snap), 2);
+    for (const auto& [l, v] : entries_[i].corners) {
+      const double d = (mesh.position(v) - hit->point).squaredNorm();
+      if (d < best_corner) {
+        best_corner = d;
+        p.boundary_loop = l;
+        p.boundary_vertex = v;
+      }
+    }
     best = p;
   }
   return best;

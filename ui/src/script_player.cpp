@@ -90,6 +90,11 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
         e.x = px[0];
         e.y = px[1];
         host.input.push(e);
+      } else if (s.contains("scroll")) {
+        InputEvent e;
+        e.kind = InputEvent::Kind::Scroll;
+        e.y = s["scroll"].get<double>();
+        host.input.push(e);
       } else if (s.contains("click") || s.contains("click_world") || s.contains("click_widget")) {
         std::array<float, 2> px{};
         if (s.contains("click")) {
@@ -148,6 +153,11 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           bool found = false;
           for (const auto& m : host.state.messages) found = found || m.text.find(want) != std::string::npos;
           if (!found) return fail("no message contains \"" + want + "\"");
+        }
+        if (x.contains("message_not_contains")) {
+          const std::string unwanted = x["message_not_contains"].get<std::string>();
+          for (const auto& m : host.state.messages)
+            if (m.text.find(unwanted) != std::string::npos) return fail("a message says: " + m.text);
         }
         if (x.contains("stage") &&
             x["stage"].get<std::string>() != std::string(to_string(host.state.stages.stage())))

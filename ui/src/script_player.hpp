@@ -8,11 +8,13 @@
 //   {"move_world": [x, y, z]}          pointer to where a world point shows now
 //   {"click": [x, y]} / {"click_world": [x, y, z]} / {"click_widget": "label"}
 //                                      move there, press and release the left button
+//   {"scroll": N}                      N wheel steps at the pointer (positive: towards)
 //   {"key": "enter" | "escape" | "f" | "z" | "y", "ctrl": bool}   press and release
 //   {"type": "text"}                   characters into the focused text field
 //   {"screenshot": "file.png"}         save the window as drawn this frame (path as given)
 //   {"expect": {"stage": "Plan", "objects": N, "no_errors": true}}   fail if not so
 //   {"expect": {"message_contains": "text"}}   fail unless a shown message contains the text
+//   {"expect": {"message_not_contains": "text"}}   fail if a shown message contains the text
 //   {"time_frames": N}                 print the mean frame time of the next N frames
 //   {"quit": true}
 #include <filesystem>

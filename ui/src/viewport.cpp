@@ -10,6 +10,9 @@ namespace sutura::ui {
 
 namespace {
 
+// A boundary corner within this many pixels of the cursor is what a click takes.
+constexpr double kCornerSnapPx = 10.0;
+
 render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y()), float(p.z())}; }
 
 // Fixes the boundary run between the two clicks of the fix draft.
@@ -98,7 +101,8 @@ void viewport_input(GuiState& s, float width, float height) {
   const bool can_pick = !s.controller.busy() && !s.side_by_side && !s.show_before &&
                         s.picker_revision == s.controller.revision();
   if (can_pick && ImGui::IsMousePosValid())
-    s.hover = s.picker.pick(s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height));
+    s.hover = s.picker.pick(s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height),
+                            kCornerSnapPx * s.camera.radians_per_pixel(height));
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
     s.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);
@@ -132,9 +136,10 @@ Overlays viewport_overlays(const GuiState& s) {
       markers(s.incision.points, {0.85f, 0.05f, 0.05f}, 9.0f);
     }
     if (s.tool == Tool::Suture && obj) {
-      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks);
+      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way);
       const render::Color colors[2] = {{0.05f, 0.55f, 0.15f}, {0.55f, 0.1f, 0.7f}};
       for (std::size_t i = 0; i < p.chains.size(); ++i) line(p.chains[i], colors[i], 5.0f);
+      for (const auto& ends : p.meeting_ends) line({ends[0], ends[1]}, {0.35f, 0.35f, 0.35f}, 2.5f);
       markers(s.suture.clicks, {0.05f, 0.35f, 0.1f}, 10.0f);
     }
     if (s.tool == Tool::Patch) markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);

@@ -8,6 +8,12 @@
 
 namespace sutura::ui {
 
+/// Standard anatomical views, named by where the eye is, in the patient frame of the bundled
+/// anatomy and of `prepare` (docs/anatomy.md: +x patient's left, +y posterior, +z superior).
+enum class StandardView { Anterior, Posterior, LeftLateral, RightLateral, Superior, Inferior };
+/// "Anterior", "Posterior", "Left lateral", "Right lateral", "Superior", "Inferior".
+const char* to_string(StandardView v);
+
 class OrbitCamera {
  public:
   /// Looks at the centre of `bounds` from the default snapshot direction, backed off so
@@ -19,6 +25,10 @@ class OrbitCamera {
   /// Moves eye and target in the view plane so the point under the cursor follows a drag of
   /// (dx, dy) pixels in a viewport `height_px` tall.
   void pan(float dx_px, float dy_px, float height_px);
+  /// Looks at the same target from the same distance along the view's direction: from the
+  /// front (anterior), behind, the patient's left or right with +z up, or from above or below
+  /// (pitch at its +-89 degree limit; +y up on screen from above).
+  void look_from(StandardView view);
   /// Scroll: each step towards the target shrinks the distance by 10 % (negative: away).
   void zoom(float steps);
 
@@ -26,6 +36,8 @@ class OrbitCamera {
   /// Ray from the eye through pixel (x, y) of a width x height viewport, (0, 0) top-left
   /// (window coordinates); the direction has unit length.
   [[nodiscard]] engine::Ray ray_through(float x, float y, float width, float height) const;
+  /// Angle (radians) one pixel subtends at the centre of a viewport `height_px` tall.
+  [[nodiscard]] double radians_per_pixel(float height_px) const;
   /// Window pixel (top-left origin) where world point `p` shows; false when it is behind
   /// the eye.
   [[nodiscard]] bool project(const engine::Vec3& p, float width, float height,
