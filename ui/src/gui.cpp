@@ -96,6 +96,10 @@ void refresh_view(GuiState& s, float aspect) {
     s.picker.rebuild(meshes);
     s.picker_revision = s.controller.revision();
   }
+  if (!s.controller.busy() && s.element_check_revision != s.controller.revision()) {
+    s.element_check = check_elements(s.controller.workspace());
+    s.element_check_revision = s.controller.revision();
+  }
   if (s.fit_requested && !s.view.current().empty()) {
     s.camera.fit(bounds_of(s.view.current()), aspect);
     s.fit_requested = false;

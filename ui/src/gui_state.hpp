@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "element_check.hpp"
 #include "op_builders.hpp"
 #include "scene_picker.hpp"
 #include "sutura/ui/orbit_camera.hpp"
@@ -137,6 +138,10 @@ struct GuiState {
   std::uint64_t messages_posted = 0;  ///< every message ever posted (the pane scrolls to a new one)
   std::uint64_t messages_shown = 0;   ///< messages_posted when the pane was last drawn
   float message_height = 80.0f;       ///< pixels; the user drags its top edge higher
+  /// Thin rest triangles of the workspace at revision element_check_revision (refreshed with
+  /// the picker): a run is refused or warned about, and the view marks them.
+  ElementCheck element_check;
+  std::uint64_t element_check_revision = ~std::uint64_t(0);
   bool fit_requested = true;
   /// Applied after the fit: the camera looks from this standard view (View menu, view bar).
   std::optional<StandardView> view_requested;

@@ -54,11 +54,24 @@ void simulate_section(GuiState& s) {
       "(e.g. a subclavian flap).");
   ImGui::EndDisabled();
 
+  if (!running) {
+    const auto coloured = [](ImVec4 colour, const std::string& text) {
+      ImGui::PushStyleColor(ImGuiCol_Text, colour);
+      ImGui::TextWrapped("%s", text.c_str());
+      ImGui::PopStyleColor();
+    };
+    if (const auto refusal = s.element_check.refusal())
+      coloured(ImVec4(0.75f, 0.05f, 0.05f, 1.0f), *refusal);
+    else if (const auto warning = s.element_check.warning())
+      coloured(ImVec4(0.7f, 0.4f, 0.0f, 1.0f), *warning);
+  }
   if (gated_button(s.widgets, "Run simulation", s.why_not(Action::StartSimulation, "simulate"),
                    "Relax the rest shape (s from 0 to 1), then settle; runs in the background.")) {
     const int relax = no_relax ? 0 : s.simulation.relax_steps;
     std::string why;
-    if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax,
+    if (const auto refusal = s.element_check.refusal()) {
+      s.error("Run refused. " + *refusal);
+    } else if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax,
                                        s.simulation.collapse_barrier),
                            why)) {
       s.stages.simulation_started();

@@ -156,6 +156,10 @@ Overlays viewport_overlays(const GuiState& s) {
       markers({obj->mesh.position(s.hover->boundary_vertex)}, {1.0f, 0.55f, 0.0f}, 12.0f);
     }
   }
+  if (s.stages.stage() != Stage::Inspect && !s.controller.busy()) {
+    for (const auto& t : s.element_check.refused) markers(t.where, {0.9f, 0.05f, 0.05f}, 9.0f);
+    for (const auto& t : s.element_check.warned) markers(t.where, {1.0f, 0.55f, 0.0f}, 7.0f);
+  }
   if (s.hover) markers({s.hover->hit.point}, {0.05f, 0.05f, 0.05f}, 8.0f);
   if (s.stages.stage() == Stage::Inspect && s.plane_origin && obj) {
     // The cross-section plane as a square outline around its origin.

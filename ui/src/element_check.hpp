@@ -1,0 +1,39 @@
+#pragma once
+// Element quality checked before a run: rest triangles (each face's stress-free shape, the x0
+// a relaxation pulls towards) so thin that the run cannot stretch them. Measured 2026-12-06
+// (docs/gui.md): runs whose smallest rest angle was 0.011, 2.0 and 8.8 degrees failed (the
+// first two are raw cut-through incisions and patches, `"remesh": false`; the third is the
+// first after remeshing the whole object), while the same plans remeshed as the window
+// records them (smallest rest angle 24 to 26 degrees) ran. Below kRefuseDeg the window
+// refuses to start; below kWarnDeg it starts but says the run may fail.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sutura/app/workspace.hpp"
+
+namespace sutura::ui {
+
+struct ThinElements {
+  std::string object;
+  std::size_t count = 0;              ///< rest triangles below the limit
+  double smallest_deg = 0.0;          ///< smallest rest angle among them
+  std::vector<engine::Vec3> where;    ///< centroids (current positions), at most kMaxMarkers
+};
+
+struct ElementCheck {
+  static constexpr double kRefuseDeg = 3.0;
+  static constexpr double kWarnDeg = 10.0;
+  static constexpr std::size_t kMaxMarkers = 500;
+  std::vector<ThinElements> refused;  ///< per object with rest angles below kRefuseDeg
+  std::vector<ThinElements> warned;   ///< per object with rest angles in [kRefuseDeg, kWarnDeg)
+  /// The reason a run is refused, with advice; nullopt when none is.
+  [[nodiscard]] std::optional<std::string> refusal() const;
+  /// The warning for thin but not refused triangles; nullopt when none.
+  [[nodiscard]] std::optional<std::string> warning() const;
+};
+
+/// Checks every object's rest triangles. O(total faces).
+ElementCheck check_elements(const app::Workspace& workspace);
+
+}  // namespace sutura::ui
