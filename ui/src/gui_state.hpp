@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "element_check.hpp"
+#include "resect_preview.hpp"
 #include "op_builders.hpp"
 #include "scene_picker.hpp"
 #include "sutura/ui/orbit_camera.hpp"
@@ -23,7 +24,7 @@
 namespace sutura::ui {
 
 /// What a left click in the 3-D view does (Plan stage tools; Navigate only orbits).
-enum class Tool { Navigate, Incise, Suture, Fix, Patch, Remesh };
+enum class Tool { Navigate, Incise, Suture, Fix, Patch, Remesh, Resect };
 
 struct IncisionDraft {
   std::vector<engine::Vec3> points;
@@ -31,6 +32,13 @@ struct IncisionDraft {
 };
 
 /// Two boundary chains picked as from/to points; filled in click order a.from, a.to, b.from, b.to.
+/// Resection: one click on the vessel wall per cut plane (resect_preview.hpp).
+struct ResectDraft {
+  std::vector<engine::Vec3> clicks;
+  bool anastomosis = true;  ///< suture the two ends together (end-to-end anastomosis)
+  float reach = 0.0f;       ///< mm, the op's `radius`; 0 = automatic
+};
+
 struct SutureDraft {
   std::vector<engine::Vec3> clicks;  ///< in click order; orient_suture_clicks reads them
   std::array<bool, 2> long_way = {false, false};  ///< per side: the longer arc between its ends
@@ -100,6 +108,7 @@ struct GuiState {
   SutureDraft suture;
   FixDraft fix;
   PatchDraft patch;
+  ResectDraft resect;
   MaterialDraft material;
   float pressure_mmhg = 80.0f;
   SimulationSettings simulation;
@@ -142,6 +151,15 @@ struct GuiState {
   /// the picker): a run is refused or warned about, and the view marks them.
   ElementCheck element_check;
   std::uint64_t element_check_revision = ~std::uint64_t(0);
+  /// The selected object's automatic centreline for the Resect tool, computed on first use
+  /// at revision centreline_revision (nullopt with centreline_error when it cannot be made).
+  std::optional<engine::CentrelineTree> centreline;
+  std::string centreline_error;
+  std::uint64_t centreline_revision = ~std::uint64_t(0);
+  std::size_t centreline_object = 0;
+  /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
+  ResectPreview resect_preview;
+  std::string resect_preview_key;
   bool fit_requested = true;
   /// Applied after the fit: the camera looks from this standard view (View menu, view bar).
   std::optional<StandardView> view_requested;

@@ -45,6 +45,10 @@ json fix_loop_op(const std::string& object, int loop, bool have_fix_op) {
           {"boundary", json::array({loop})}, {"dofs", json::array({"all"})}};
 }
 
+json fix_all_ends_op(const std::string& object) {
+  return {{"op", "fix"}, {"object", object}, {"boundary", "all"}, {"dofs", json::array({"all"})}};
+}
+
 json fix_vertices_op(const std::string& object, const std::vector<int>& vertices, bool have_fix_op) {
   return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object}, {"vertices", vertices},
           {"dofs", json::array({"all"})}};
@@ -73,6 +77,15 @@ json patch_op(const std::string& object, const std::string& shape, const engine:
   return {{"op", "patch"}, {"object", object}, {"shape", shape}, {"start", point_json(lip_start)},
           {"end", point_json(lip_end)}, {"width", width}, {"material", material},
           {"remesh", true}};
+}
+
+json resect_op(const std::string& object, const std::vector<engine::CutPlane>& planes, double radius,
+               bool anastomosis) {
+  json ps = json::array();
+  for (const auto& p : planes) ps.push_back({{"origin", point_json(p.origin)}, {"normal", point_json(p.normal)}});
+  // Recorded, as for incise: the same meaning whatever the version of a session continued.
+  return {{"op", "resect"}, {"object", object}, {"planes", ps}, {"radius", radius},
+          {"anastomosis", anastomosis}, {"remesh", true}};
 }
 
 json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near, double radius,

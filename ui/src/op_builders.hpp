@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sutura/engine/mesh.hpp"
+#include "sutura/engine/surgery/resect.hpp"
 
 namespace sutura::ui {
 
@@ -33,6 +34,8 @@ nlohmann::json material_op(const std::string& object, double youngs_modulus, dou
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
 /// equivalent `constrain` op with a boundary selection.
 nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);
+/// Fixes every DOF of every open end: {"op": "fix", "boundary": "all"}.
+nlohmann::json fix_all_ends_op(const std::string& object);
 /// Fixes every DOF of the given vertices (a boundary run picked in the view), likewise.
 nlohmann::json fix_vertices_op(const std::string& object, const std::vector<int>& vertices,
                                bool have_fix_op);
@@ -47,6 +50,10 @@ nlohmann::json join_op(const std::string& object, const ChainEnds& a, const Chai
 nlohmann::json patch_op(const std::string& object, const std::string& shape,
                         const engine::Vec3& lip_start, const engine::Vec3& lip_end, double width,
                         const nlohmann::json& material);
+/// {"op": "resect"} with the planes, `radius` (mm) and `anastomosis`; the seed is the op's
+/// default (between the two planes' origins).
+nlohmann::json resect_op(const std::string& object, const std::vector<engine::CutPlane>& planes, double radius,
+                         bool anastomosis);
 /// Remesh of the faces within `radius` of the polyline through `near` (the whole object when
 /// empty) to `target_edge_length` (0: the region's mean), graded by `grading` (> 1, with
 /// `near` only) away from it.

@@ -117,6 +117,7 @@ void tool_choice(GuiState& s) {
   tool_radio("Fix ends", Tool::Fix, s.why_not(Action::FixRegion));
   tool_radio("Patch", Tool::Patch, s.why_not(Action::AddPatch, "patch"));
   tool_radio("Remesh", Tool::Remesh, s.why_not(Action::Remesh, "remesh"));
+  tool_radio("Resect", Tool::Resect, s.why_not(Action::Resect, "resect"));
   ImGui::NewLine();
 }
 
@@ -269,9 +270,13 @@ void plan_section(GuiState& s) {
       ImGui::TextWrapped(s.fix.run ? "Click the first and the last boundary vertex of the run "
                                      "(it follows the boundary with the mesh on its left)."
                                    : "Click near a boundary loop (a vessel end) to fix it.");
+      if (gated_button(s.widgets, "Hold every open end", s.why_not(Action::FixRegion, "fix")) && s.selected())
+        s.perform(fix_all_ends_op(s.selected()->name),
+                  "Every open end of '" + s.selected()->name + "' held");
       break;
     case Tool::Patch: patch_controls(s); break;
     case Tool::Remesh: remesh_controls(s); break;
+    case Tool::Resect: resect_controls(s); break;
   }
   ImGui::Separator();
   if (noted_tree_node(s.widgets, "Material of the selected object")) {
@@ -326,6 +331,7 @@ void cancel_draft(GuiState& s) {
   s.suture.long_way = {false, false};
   s.patch.ends.clear();
   s.remesh.points.clear();
+  s.resect.clicks.clear();
 }
 
 void undo(GuiState& s) {

@@ -43,10 +43,12 @@ void menu_bar(GuiState& s) {
   ImGui::EndMainMenuBar();
 }
 
-void view_bar(GuiState& s, float view_width) {
+void view_bar(GuiState& s) {
+  // Bottom left of the view, above the message history: the captions ("Before", "After") sit
+  // at the top of each half and the colour legend at the right edge.
   const ImGuiViewport* vp = ImGui::GetMainViewport();
-  ImGui::SetNextWindowPos(ImVec2(s.view_left + view_width - 8.0f, vp->Pos.y + ImGui::GetFrameHeight() + 6.0f),
-                          ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+  const float bottom = vp->WorkPos.y + vp->WorkSize.y - 6.0f - (s.messages.empty() ? 0.0f : s.message_height + 6.0f);
+  ImGui::SetNextWindowPos(ImVec2(s.view_left + 8.0f, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.6f);
   ImGui::Begin("##views", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |

@@ -11,8 +11,8 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
-/// A row of standard-view buttons at the top right of the 3-D view (`view_width` pixels wide).
-void view_bar(GuiState& s, float view_width);
+/// A row of standard-view buttons at the bottom left of the 3-D view, above the messages.
+void view_bar(GuiState& s);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
 
@@ -20,6 +20,9 @@ void message_window(GuiState& s);
 void commit_incision(GuiState& s);
 /// Commits the suture draft as a join op.
 void commit_suture(GuiState& s);
+/// The Resect tool's panel, and its commit (Enter in the view).
+void resect_controls(GuiState& s);
+void commit_resection(GuiState& s);
 /// Escape: drops the active tool's draft.
 void cancel_draft(GuiState& s);
 /// Ctrl+Z / Ctrl+Y.

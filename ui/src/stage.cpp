@@ -19,6 +19,7 @@ std::string_view to_string(Action a) {
     case Action::Incise: return "incise";
     case Action::Suture: return "suture";
     case Action::AddPatch: return "add patch";
+    case Action::Resect: return "resect";
     case Action::Remesh: return "remesh";
     case Action::FixRegion: return "fix region";
     case Action::EditMaterial: return "edit material";
@@ -38,7 +39,7 @@ std::string_view to_string(Action a) {
 }
 
 std::optional<std::string> StageMachine::why_disabled(Action a) const {
-  const bool planning_edit = a == Action::Incise || a == Action::Suture || a == Action::AddPatch ||
+  const bool planning_edit = a == Action::Incise || a == Action::Suture || a == Action::AddPatch || a == Action::Resect ||
                              a == Action::Remesh || a == Action::FixRegion || a == Action::EditMaterial ||
                              a == Action::Undo || a == Action::Redo;
   const bool inspecting = a == Action::ToggleBeforeAfter || a == Action::ShowColorMap ||

@@ -54,6 +54,10 @@ void click(GuiState& s) {
     case Tool::Navigate: break;
     case Tool::Incise: s.incision.points.push_back(h.hit.point); break;
     case Tool::Remesh: s.remesh.points.push_back(h.hit.point); break;
+    case Tool::Resect:
+      if (s.resect.clicks.size() == 2) s.resect.clicks.clear();  // a third click starts again
+      s.resect.clicks.push_back(h.hit.point);
+      break;
     case Tool::Suture:
       if (s.suture.clicks.size() < 4) s.suture.clicks.push_back(on_boundary);
       break;
@@ -83,6 +87,7 @@ void shortcuts(GuiState& s) {
     if (ImGui::IsKeyPressed(GLFW_KEY_ENTER, false) || ImGui::IsKeyPressed(GLFW_KEY_KP_ENTER, false)) {
       if (s.tool == Tool::Incise) commit_incision(s);
       else if (s.tool == Tool::Suture) commit_suture(s);
+      else if (s.tool == Tool::Resect) commit_resection(s);
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) cancel_draft(s);
   }
@@ -144,6 +149,28 @@ Overlays viewport_overlays(const GuiState& s) {
     }
     if (s.tool == Tool::Patch) markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
     if (s.tool == Tool::Remesh) markers(s.remesh.points, {0.6f, 0.2f, 0.8f}, 10.0f);
+    if (s.tool == Tool::Resect && !s.resect.clicks.empty()) {
+      // The preview is brought up to date by the panel, drawn before the view.
+      const ResectPreview& p = s.resect_preview;
+      for (std::size_t k = 0; k < p.planes.size(); ++k) {
+        const engine::Vec3 n = p.planes[k].normal.normalized();
+        const engine::Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+        const double r = 1.3 * p.cuts[k].wall_distance;
+        std::vector<engine::Vec3> circle;
+        for (int i = 0; i <= 48; ++i) {
+          const double a = 2.0 * M_PI * i / 48.0;
+          circle.push_back(p.planes[k].origin + r * (std::cos(a) * u + std::sin(a) * v));
+        }
+        line(circle, {0.1f, 0.4f, 0.9f}, 2.5f);
+      }
+      for (const auto& loop : p.loops) {
+        std::vector<engine::Vec3> closed = loop;
+        if (!closed.empty()) closed.push_back(closed.front());
+        line(closed, {0.85f, 0.05f, 0.05f}, 4.0f);
+      }
+      markers(p.removed, {0.85f, 0.1f, 0.1f}, 5.0f);
+      markers(s.resect.clicks, {0.1f, 0.4f, 0.9f}, 10.0f);
+    }
     if (s.tool == Tool::Fix) markers(s.fix.clicks, {0.95f, 0.75f, 0.05f}, 12.0f);
     // Hovered boundary loop: what a Fix or Suture click would take.
     if (s.hover && s.hover->boundary_loop >= 0 && obj && s.hover->object == s.object &&

@@ -17,6 +17,7 @@ enum class Action {
   Incise,
   Suture,
   AddPatch,
+  Resect,
   Remesh,
   FixRegion,
   EditMaterial,
