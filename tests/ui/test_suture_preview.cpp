@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "../../ui/src/op_builders.hpp"
 #include "../../ui/src/scene_picker.hpp"
 #include "../../ui/src/suture_preview.hpp"
 #include "sutura/engine/generators.hpp"
@@ -108,4 +109,32 @@ TEST(ScenePicker, AClickNearACornerPicksIt) {
   const auto middle = picker.pick({Vec3(17.6, 0.3, 10), Vec3(0, 0, -1)}, std::atan(0.3));
   ASSERT_TRUE(middle);
   EXPECT_EQ(m.position(middle->boundary_vertex), Vec3(18, 0, 0));
+}
+
+TEST(SuturePreview, TheSameVertexTwiceIsItsWholeLoop) {
+  engine::TubeParams tp;
+  tp.radius = 4.0;
+  tp.length = 20.0;
+  const engine::SurfaceMesh m = engine::make_tube(tp);
+  const Vec3 bottom = m.position(m.boundary_loops()[0][3]);
+  const Vec3 top = m.position(m.boundary_loops()[1][5]);
+  const std::vector<Vec3> clicks = {bottom, bottom, top, top};
+  EXPECT_EQ(ui::orient_suture_clicks(m, clicks), clicks);  // loops are not reordered
+  const ui::SuturePreview p = ui::preview_suture(m, clicks);
+  ASSERT_EQ(p.chains.size(), 2u);
+  EXPECT_EQ(p.chains[0].size(), m.boundary_loops()[0].size());
+  EXPECT_EQ(p.chains[1].size(), m.boundary_loops()[1].size());
+  EXPECT_EQ(p.chains[0].front(), bottom);
+  EXPECT_EQ(p.chains[1].front(), top);
+  EXPECT_NEAR(p.lengths[0], 2.0 * 32 * 4.0 * std::sin(M_PI / 32), 1e-9);  // closing edge included
+  // Two loops meet at their first vertices.
+  ASSERT_EQ(p.meeting_ends.size(), 1u);
+  EXPECT_EQ(p.meeting_ends[0][0], bottom);
+  EXPECT_EQ(p.meeting_ends[0][1], top);
+  // Recorded as loops.
+  const nlohmann::json op = ui::join_op("a", {bottom, bottom}, {top, top}, false);
+  EXPECT_EQ(op["chains"][0], nlohmann::json({{"loop", {bottom.x(), bottom.y(), bottom.z()}}}));
+  EXPECT_EQ(op["chains"][1], nlohmann::json({{"loop", {top.x(), top.y(), top.z()}}}));
+  const nlohmann::json open = ui::join_op("a", {bottom, top}, {top, bottom}, false);
+  EXPECT_TRUE(open["chains"][0].contains("from"));
 }

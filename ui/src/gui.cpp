@@ -260,7 +260,6 @@ int run_gui(const GuiOptions& options) {
       message_window(s);
       const float view_width = std::max(1.0f, float(width) - s.view_left);
       refresh_view(s, view_width / float(height));
-      view_bar(s);
       viewport_input(s, view_width, float(height));
       view_captions(s, view_width);
     } catch (const std::exception& e) {

@@ -65,7 +65,8 @@ json incise_op(const std::string& object, const std::vector<engine::Vec3>& point
 json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, bool onto_b) {
   json chains = json::array();
   for (const auto* c : {&a, &b})
-    chains.push_back({{"from", point_json(c->from)}, {"to", point_json(c->to)}});
+    chains.push_back(c->from == c->to ? json{{"loop", point_json(c->from)}}
+                                      : json{{"from", point_json(c->from)}, {"to", point_json(c->to)}});
   // Recorded, as for incise: matched seams whatever the version of a session continued.
   json op = {{"op", "join"}, {"object", object}, {"chains", chains}, {"remesh", true}};
   if (onto_b) op["placement"] = "onto_b";

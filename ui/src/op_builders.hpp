@@ -44,7 +44,8 @@ nlohmann::json incise_op(const std::string& object, const std::vector<engine::Ve
 struct ChainEnds {
   engine::Vec3 from, to;
 };
-/// `onto_b`: placement "onto_b" (side a drawn onto side b); otherwise the default (mean).
+/// `onto_b`: placement "onto_b" (side a drawn onto side b); otherwise the default (mean). A
+/// chain whose ends are the same point is recorded as the whole loop there ({"loop": p}).
 nlohmann::json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b,
                        bool onto_b = false);
 nlohmann::json patch_op(const std::string& object, const std::string& shape,

@@ -142,7 +142,8 @@ void suture_controls(GuiState& s) {
                                  "both sides chosen: Join (or Enter)"};
   ImGui::TextWrapped("Click the two ends of each side, in either order; each side takes the "
                      "shorter way along the boundary between them, and the surface's orientation "
-                     "decides which ends meet (grey lines). Next: %s.",
+                     "decides which ends meet (grey lines). The same vertex twice takes its whole "
+                     "loop (an open end, for an end-to-end anastomosis). Next: %s.",
                      kSteps[std::min<std::size_t>(s.suture.clicks.size(), 4)]);
   if (const auto* obj = s.selected()) {
     const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way);
@@ -164,7 +165,15 @@ void suture_controls(GuiState& s) {
 
 void patch_controls(GuiState& s) {
   static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
-  ImGui::Combo("shape", &s.patch.shape, kShapes, 3);
+  static const char* kShapeUse[] = {"an incision inside the wall (patch aortoplasty)",
+                                    "pointed at both ends", "a gusset: apex at the incision's "
+                                    "end, base across an opened cut edge (widening)"};
+  ImGui::TextUnformatted("shape:");
+  for (int k = 0; k < 3; ++k) {
+    ImGui::SameLine();
+    if (noted_radio(s.widgets, kShapes[k], s.patch.shape == k)) s.patch.shape = k;
+    tooltip_for_last_item(kShapeUse[k]);
+  }
   number_field("width [mm]", &s.patch.width, 1.0f, 15.0f, 0.5f, "%.1f");
   number_field("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 20.0f, 0.1f);
   number_field("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f, 0.05f);

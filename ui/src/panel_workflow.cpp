@@ -37,29 +37,15 @@ void menu_bar(GuiState& s) {
     ImGui::MenuItem("Wireframe", nullptr, &s.wireframe);
     ImGui::EndMenu();
   }
+  // Standard views in the menu bar, outside the 3-D view, so that they never cover the vessel
+  // or take a click meant for it.
+  ImGui::TextDisabled("|  View from:");
+  for (const StandardView v : kStandardViews)
+    if (gated_button(s.widgets, to_string(v), std::nullopt)) s.fit_requested = true, s.view_requested = v;
   ImGui::SameLine(ImGui::GetWindowWidth() - 420.0f);
   ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
               s.controller.recorder().file().filename().c_str());
   ImGui::EndMainMenuBar();
-}
-
-void view_bar(GuiState& s) {
-  // Bottom left of the view, above the message history: the captions ("Before", "After") sit
-  // at the top of each half and the colour legend at the right edge.
-  const ImGuiViewport* vp = ImGui::GetMainViewport();
-  const float bottom = vp->WorkPos.y + vp->WorkSize.y - 6.0f - (s.messages.empty() ? 0.0f : s.message_height + 6.0f);
-  ImGui::SetNextWindowPos(ImVec2(s.view_left + 8.0f, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-  ImGui::SetNextWindowBgAlpha(0.6f);
-  ImGui::Begin("##views", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                   ImGuiWindowFlags_NoNav);
-  ImGui::TextUnformatted("View from:");
-  for (const StandardView v : kStandardViews) {
-    ImGui::SameLine();
-    if (gated_button(s.widgets, to_string(v), std::nullopt)) s.fit_requested = true, s.view_requested = v;
-  }
-  ImGui::End();
 }
 
 void workflow_window(GuiState& s) {

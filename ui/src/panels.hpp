@@ -11,8 +11,6 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
-/// A row of standard-view buttons at the bottom left of the 3-D view, above the messages.
-void view_bar(GuiState& s);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
 

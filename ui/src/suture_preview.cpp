@@ -18,6 +18,7 @@ engine::ChainSpec spec(const engine::SurfaceMesh& mesh, const engine::Vec3& from
   engine::ChainSpec s;
   s.from = from;
   s.to = to;
+  s.loop = from == to;  // the same vertex clicked twice: its whole loop
   s.max_distance = 3.0 * mesh.mean_edge_length();
   return s;
 }
@@ -54,6 +55,7 @@ std::vector<engine::Vec3> orient_suture_clicks(const engine::SurfaceMesh& mesh,
   std::set<Edge> side_a;
   for (std::size_t side = 0; side < 2 && 2 * side + 1 < out.size(); ++side) {
     const engine::Vec3 p = out[2 * side], q = out[2 * side + 1];
+    if (p == q) continue;  // a whole loop: nothing to orient
     std::optional<engine::BoundaryChain> as_clicked = resolve(mesh, p, q), reversed = resolve(mesh, q, p);
     if (side == 1) {
       if (as_clicked && shares_an_edge(*as_clicked, side_a)) as_clicked.reset();
@@ -92,13 +94,19 @@ SuturePreview preview_suture(const engine::SurfaceMesh& mesh, const std::vector<
       counts.push_back(chain.vertices.size());
       char buf[160];
       std::snprintf(buf, sizeof buf, "Side %s: %zu vertices, %.1f mm%s.", name, chain.vertices.size(),
-                    p.lengths.back(), long_way[side] ? ", the long way round" : "");
+                    p.lengths.back(),
+                    chain.closed ? ", a whole loop" : long_way[side] ? ", the long way round" : "");
       p.lines.emplace_back(buf);
     } catch (const std::exception& e) {
       p.lines.push_back(std::string("Side ") + name + ": " + e.what());
     }
   }
-  if (p.chains.size() == 2) {
+  const auto loop_side = [&](std::size_t side) { return oriented[2 * side] == oriented[2 * side + 1]; };
+  if (p.chains.size() == 2 && loop_side(0) && loop_side(1)) {
+    p.meeting_ends.push_back({p.chains[0].front(), p.chains[1].front()});
+    p.lines.emplace_back("Two whole loops (an end-to-end anastomosis): they meet at the grey line, "
+                         "where you clicked, and run round in opposite directions.");
+  } else if (p.chains.size() == 2) {
     p.meeting_ends.push_back({p.chains[0].front(), p.chains[1].back()});
     p.meeting_ends.push_back({p.chains[0].back(), p.chains[1].front()});
     p.lines.emplace_back("The grey lines show which ends meet.");

@@ -5,7 +5,10 @@
 // boundary direction, as the join op resolves chains. Side B never takes an arc sharing an
 // edge with side A (a lip is not sutured to itself), so clicking both lips of an incision
 // from the same end gives the two lips. The join then pairs A's first end with B's last:
-// the only pairing that keeps the joined surface consistently oriented.
+// the only pairing that keeps the joined surface consistently oriented. A side whose two clicks
+// are the same boundary vertex is that vertex's whole boundary loop, starting there (an open
+// end, for an end-to-end anastomosis); two loops pair first with first, running in opposite
+// directions.
 #include <array>
 #include <string>
 #include <vector>
@@ -24,7 +27,8 @@ std::vector<engine::Vec3> orient_suture_clicks(const engine::SurfaceMesh& mesh,
 struct SuturePreview {
   std::vector<std::vector<engine::Vec3>> chains;  ///< resolved chains, polylines to draw
   std::vector<double> lengths;                    ///< mm, per chain
-  /// With both chains: the ends that meet (A's first and B's last, A's last and B's first).
+  /// With both chains: the ends that meet (A's first and B's last, A's last and B's first;
+  /// for two loops, their first vertices).
   std::vector<std::array<engine::Vec3, 2>> meeting_ends;
   std::vector<std::string> lines;                 ///< text for the panel
 };

@@ -10,7 +10,8 @@ namespace sutura::ui {
 
 namespace {
 
-// A boundary corner within this many pixels of the cursor is what a click takes.
+// A boundary corner within this many pixels of the cursor is what a click takes, and an
+// incision point this close to an open boundary goes onto it.
 constexpr double kCornerSnapPx = 10.0;
 
 render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y()), float(p.z())}; }
@@ -32,8 +33,8 @@ void fix_run(GuiState& s, const app::SceneObject& obj) {
   }
 }
 
-// A click in the view with the current tool.
-void click(GuiState& s) {
+// A click in the view with the current tool; `snap_angle` is the angle kCornerSnapPx subtend.
+void click(GuiState& s, double snap_angle) {
   if (!s.hover) return;
   const Pick& h = *s.hover;
   if (s.stages.stage() == Stage::Inspect) {
@@ -52,7 +53,16 @@ void click(GuiState& s) {
       h.boundary_vertex.valid() && obj ? obj->mesh.position(h.boundary_vertex) : h.hit.point;
   switch (s.tool) {
     case Tool::Navigate: break;
-    case Tool::Incise: s.incision.points.push_back(h.hit.point); break;
+    case Tool::Incise: {
+      // Within a few pixels of an open boundary (a vessel end, a cut edge), the incision
+      // starts or ends on it.
+      engine::Vec3 p = h.hit.point;
+      if (h.boundary_vertex.valid() && obj &&
+          (obj->mesh.position(h.boundary_vertex) - p).norm() <= h.hit.t * std::tan(snap_angle))
+        p = obj->mesh.position(h.boundary_vertex);
+      s.incision.points.push_back(p);
+      break;
+    }
     case Tool::Remesh: s.remesh.points.push_back(h.hit.point); break;
     case Tool::Resect:
       if (s.resect.clicks.size() == 2) s.resect.clicks.clear();  // a third click starts again
@@ -105,15 +115,16 @@ void viewport_input(GuiState& s, float width, float height) {
   // Picking needs a mesh that matches the picker (not during a run, not in split views).
   const bool can_pick = !s.controller.busy() && !s.side_by_side && !s.show_before &&
                         s.picker_revision == s.controller.revision();
+  const double snap_angle = kCornerSnapPx * s.camera.radians_per_pixel(height);
   if (can_pick && ImGui::IsMousePosValid())
     s.hover = s.picker.pick(s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height),
-                            kCornerSnapPx * s.camera.radians_per_pixel(height));
+                            snap_angle);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
     s.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);
   if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
   // A click is a press and release without dragging.
-  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 16.0f) click(s);
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 16.0f) click(s, snap_angle);
 }
 
 Overlays viewport_overlays(const GuiState& s) {
