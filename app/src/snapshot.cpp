@@ -1,5 +1,7 @@
 #include "snapshot.hpp"
 
+#include "sutura/app/plan_drawing.hpp"
+
 #include "sutura/engine/measure/vertex_fields.hpp"
 #include "sutura/engine/surgery/relaxation.hpp"
 
@@ -17,24 +19,11 @@ namespace {
 // Arrays for one object in one state; the renderer's spans point into these.
 struct ObjectArrays {
   std::vector<float> positions;
-  std::vector<std::uint32_t> triangles;
+  PlanDrawing plan;  ///< faces (wall and patches) and plan lines
   std::vector<float> scalars;
   std::vector<std::vector<render::Point3>> loops;
-  std::vector<std::vector<render::Point3>> incisions, sutures;
   render::Color color{};
 };
-
-std::vector<render::Point3> polyline(const engine::SurfaceMesh& mesh,
-                                     const std::vector<engine::VertexId>& chain) {
-  std::vector<render::Point3> pts;
-  pts.reserve(chain.size());
-  for (const auto v : chain) {
-    if (v.index() >= mesh.num_vertices()) continue;
-    const auto& p = mesh.position(v);
-    pts.push_back({float(p.x()), float(p.y()), float(p.z())});
-  }
-  return pts;
-}
 
 // Per-element measures of Model 1 (the default shell model) averaged to the vertices with
 // face-area weights, for the current state with its simulated nodal rotations. The
@@ -91,7 +80,7 @@ ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
                         const engine::SurfaceMesh& state, render::Color color) {
   ObjectArrays a;
   a.positions = state.flat_positions();
-  a.triangles = state.flat_triangles();
+  a.plan = plan_drawing(obj, state, op.marks);
   if (op.field != Field::None) a.scalars = field_values(op.field, obj, state);
   if (op.boundaries) {
     for (const auto& loop : state.boundary_loops()) {
@@ -103,10 +92,6 @@ ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
       }
       a.loops.push_back(std::move(pts));
     }
-  }
-  if (op.marks && &state == &obj.mesh) {
-    for (const auto& c : obj.sim.marks.incisions) a.incisions.push_back(polyline(state, c));
-    for (const auto& c : obj.sim.marks.sutures) a.sutures.push_back(polyline(state, c));
   }
   a.color = color;
   return a;
@@ -123,8 +108,9 @@ ObjectArrays rest_arrays(const SnapshotOp& op, const SceneObject& obj, render::C
   for (const auto& e : rest.elements)
     for (const auto& x : e.X)
       for (int k = 0; k < 3; ++k) a.positions.push_back(static_cast<float>(x[k]));
-  a.triangles.resize(3 * rest.elements.size());
-  for (std::size_t i = 0; i < a.triangles.size(); ++i) a.triangles[i] = static_cast<std::uint32_t>(i);
+  a.plan.wall_triangles.resize(3 * rest.elements.size());
+  for (std::size_t i = 0; i < a.plan.wall_triangles.size(); ++i)
+    a.plan.wall_triangles[i] = static_cast<std::uint32_t>(i);
   a.color = color;  // plain: the rest shape carries no field
   return a;
 }
@@ -133,13 +119,7 @@ render::Scene scene_for(const SnapshotOp& op, const std::vector<ObjectArrays>& a
                         const std::optional<render::ColorMap>& cmap) {
   render::Scene scene;
   for (const auto& a : arrays) {
-    render::SurfaceItem s;
-    s.positions = a.positions;
-    s.triangles = a.triangles;
-    s.scalars = a.scalars;
-    s.color = a.color;
-    s.wireframe = op.wireframe;
-    scene.surfaces.push_back(s);
+    add_plan_surfaces(scene, a.positions, a.scalars, a.plan, a.color, op.wireframe);
     for (const auto& loop : a.loops) {
       render::PolylineItem line;
       line.points = loop;
@@ -148,17 +128,7 @@ render::Scene scene_for(const SnapshotOp& op, const std::vector<ObjectArrays>& a
       line.width_px = 2.5f;
       scene.polylines.push_back(std::move(line));
     }
-    // Incision lips in red, suture lines in green, drawn over the surface.
-    for (const auto* set : {&a.incisions, &a.sutures})
-      for (const auto& pts : *set) {
-        if (pts.size() < 2) continue;
-        render::PolylineItem line;
-        line.points = pts;
-        line.color = set == &a.incisions ? render::Color{0.85f, 0.1f, 0.1f}
-                                         : render::Color{0.1f, 0.7f, 0.2f};
-        line.width_px = 3.0f;
-        scene.polylines.push_back(std::move(line));
-      }
+    add_plan_lines(scene, a.plan);
   }
   scene.color_map = cmap;
   return scene;

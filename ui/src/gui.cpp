@@ -50,12 +50,7 @@ SessionRecorder record_new_session(const fs::path& out_dir, const Start& start) 
 
 std::array<render::Point3, 2> bounds_of(const std::vector<ObjectArrays>& objects) {
   render::Scene scene;
-  for (const auto& a : objects) {
-    render::SurfaceItem s;
-    s.positions = a.positions;
-    s.triangles = a.triangles;
-    scene.surfaces.push_back(s);
-  }
+  for (const auto& a : objects) app::add_plan_surfaces(scene, a.positions, {}, a.plan, a.color, false);
   return render::scene_bounds(scene);
 }
 

@@ -51,7 +51,7 @@ ObjectArrays arrays_for(const app::SceneObject& obj, bool current, render::Color
   ObjectArrays a;
   a.name = obj.name;
   a.positions = mesh.flat_positions();
-  a.triangles = mesh.flat_triangles();
+  a.plan = app::plan_drawing(obj, mesh, true);
   a.color = color;
   for (const auto& loop : mesh.boundary_loops()) {
     std::vector<render::Point3> pts;
@@ -145,13 +145,8 @@ render::Scene make_scene(const std::vector<ObjectArrays>& objects, const Overlay
   render::Scene scene;
   scene.background = {0.93f, 0.94f, 0.96f};
   for (const auto& a : objects) {
-    render::SurfaceItem s;
-    s.positions = a.positions;
-    s.triangles = a.triangles;
-    if (color_map) s.scalars = a.scalars;
-    s.color = a.color;
-    s.wireframe = wireframe;
-    scene.surfaces.push_back(s);
+    app::add_plan_surfaces(scene, a.positions, color_map ? std::span<const float>(a.scalars) : std::span<const float>(),
+                           a.plan, a.color, wireframe);
     for (const auto& loop : a.loops) {
       render::PolylineItem line;
       line.points = loop;
@@ -167,6 +162,7 @@ render::Scene make_scene(const std::vector<ObjectArrays>& objects, const Overlay
       fixed.size_px = 7.0f;
       scene.points.push_back(std::move(fixed));
     }
+    app::add_plan_lines(scene, a.plan);
   }
   scene.polylines.insert(scene.polylines.end(), overlays.lines.begin(), overlays.lines.end());
   scene.points.insert(scene.points.end(), overlays.points.begin(), overlays.points.end());

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sutura/app/plan_drawing.hpp"
 #include "sutura/app/workspace.hpp"
 #include "sutura/render/scene.hpp"
 #include "sutura/ui/session_controller.hpp"
@@ -21,7 +22,7 @@ const char* field_label(ViewField f);
 struct ObjectArrays {
   std::string name;
   std::vector<float> positions;
-  std::vector<std::uint32_t> triangles;
+  app::PlanDrawing plan;       ///< faces (wall and patches), incisions and sutures
   std::vector<float> scalars;  ///< empty without a field
   std::vector<std::vector<render::Point3>> loops;
   std::vector<render::Point3> fixed;  ///< vertices with any fixed DOF
