@@ -81,3 +81,22 @@ TEST(OrbitCamera, StandardViewsLookFromWhereTheyAreNamed) {
     EXPECT_NEAR(right[1], centre[1], 1e-2) << ui::to_string(k.view);
   }
 }
+
+TEST(OrbitCamera, ZoomTowardsAPointKeepsItUnderThePointer) {
+  ui::OrbitCamera cam;
+  cam.fit(kBounds, 1.5f);
+  cam.orbit(30, 10);
+  const engine::Ray r = cam.ray_through(200.0f, 650.0f, 1200, 800);
+  const engine::Vec3 p = r.origin + 40.0 * r.direction;
+  const double d0 = (vec(cam.camera().target) - vec(cam.camera().eye)).norm();
+  for (float steps : {3.0f, -5.0f, 1.5f}) {
+    cam.zoom_towards(p, steps);
+    std::array<float, 2> px{};
+    ASSERT_TRUE(cam.project(p, 1200, 800, px));
+    EXPECT_NEAR(px[0], 200.0f, 0.02f) << steps;
+    EXPECT_NEAR(px[1], 650.0f, 0.02f) << steps;
+  }
+  // The distance changed as zoom() changes it: 0.9^(3 - 5 + 1.5).
+  const double d1 = (vec(cam.camera().target) - vec(cam.camera().eye)).norm();
+  EXPECT_NEAR(d1 / d0, std::pow(0.9, -0.5), 1e-4);
+}

@@ -215,7 +215,7 @@ int run_gui(const GuiOptions& options) {
   auto last = std::chrono::steady_clock::now();
   double frame_seconds = 0.0;
   int idle_frames = 0;
-  while (!glfwWindowShouldClose(glfw) && !s.quit) {
+  while (!s.quit) {
     // Draw continuously only while something happens: a running op gets the CPU (the view
     // follows it at up to 10 frames per second), an idle window waits for input.
     if (controller.busy()) glfwWaitEventsTimeout(0.1);
@@ -223,6 +223,11 @@ int run_gui(const GuiOptions& options) {
     else if (idle_frames > 3) glfwWaitEventsTimeout(0.5);
     else glfwPollEvents();
     idle_frames = input.empty() ? idle_frames + 1 : 0;
+    if (glfwWindowShouldClose(glfw)) {  // the window's close button: ask first if work would be lost
+      glfwSetWindowShouldClose(glfw, GLFW_FALSE);
+      s.quit_requested = true;
+      if (s.unsaved_work().empty()) s.quit = true;  // also when minimised (no frame to ask in)
+    }
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
     glfwGetWindowSize(glfw, &width, &height);
     glfwGetFramebufferSize(glfw, &fb_width, &fb_height);
@@ -251,6 +256,7 @@ int run_gui(const GuiOptions& options) {
     finish_worker(s);
     try {
       menu_bar(s);
+      quit_dialog(s);
       workflow_window(s);
       message_window(s);
       const float view_width = std::max(1.0f, float(width) - s.view_left);

@@ -23,6 +23,18 @@ std::optional<std::string> GuiState::why_not(Action a, const std::string& op) co
   return std::nullopt;
 }
 
+std::vector<std::string> GuiState::unsaved_work() const {
+  std::vector<std::string> out;
+  if (controller.busy()) out.emplace_back("the simulation running now (its result is not recorded until it finishes)");
+  if (!incision.points.empty()) out.emplace_back("the incision being drawn");
+  if (!suture.clicks.empty()) out.emplace_back("the suture being picked");
+  if (!patch.ends.empty()) out.emplace_back("the patch being placed");
+  if (!resect.clicks.empty()) out.emplace_back("the resection being placed");
+  if (!remesh.points.empty()) out.emplace_back("the remesh region being drawn");
+  if (!fix.clicks.empty()) out.emplace_back("the boundary run being fixed");
+  return out;
+}
+
 const app::SceneObject* GuiState::selected() const {
   if (controller.busy()) return nullptr;
   const auto& objs = controller.workspace().objects();

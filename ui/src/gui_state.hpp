@@ -167,6 +167,14 @@ struct GuiState {
   /// left edge, set each frame by workflow_window) down to the bottom.
   float view_left = 0.0f;
   bool quit = false;
+  /// Quit asked for (window closed, File > Quit, a script's quit): quits at once when nothing
+  /// would be lost, otherwise asks first (quit_dialog()).
+  bool quit_requested = false;
+
+  /// What quitting now would lose (a drawn but uncommitted incision, suture, patch, resection,
+  /// remesh or fix; a running simulation), one line each; empty when nothing. Every committed
+  /// action is already in the recording.
+  [[nodiscard]] std::vector<std::string> unsaved_work() const;
 
   [[nodiscard]] bool has_op(const std::string& name) const;
   /// Why an op this build lacks cannot be used, or nullopt when it exists.

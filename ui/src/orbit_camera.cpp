@@ -78,6 +78,15 @@ void OrbitCamera::zoom(float steps) {
   distance_ = std::clamp(distance_ * std::pow(0.9, double(steps)), 1e-3, 1e6);
 }
 
+void OrbitCamera::zoom_towards(const Vec3& p, float steps) {
+  // eye' = p + k (eye - p) with the direction kept: target' = p + k (target - p) and
+  // distance' = k distance, so p - eye' = k (p - eye) projects to the same pixel.
+  const double before = distance_;
+  zoom(steps);
+  const double k = distance_ / before;
+  target_ = p + k * (target_ - p);
+}
+
 render::Camera OrbitCamera::camera() const {
   render::Camera c;
   c.target = to_point(target_);

@@ -27,7 +27,7 @@ void menu_bar(GuiState& s) {
       }
     }
     ImGui::Separator();
-    if (ImGui::MenuItem("Quit")) s.quit = true;
+    if (ImGui::MenuItem("Quit")) s.quit_requested = true;
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -46,6 +46,30 @@ void menu_bar(GuiState& s) {
   ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
               s.controller.recorder().file().filename().c_str());
   ImGui::EndMainMenuBar();
+}
+
+void quit_dialog(GuiState& s) {
+  if (!s.quit_requested) return;
+  const std::vector<std::string> lost = s.unsaved_work();
+  if (lost.empty()) {
+    s.quit = true;
+    return;
+  }
+  if (!ImGui::IsPopupOpen("Quit Sutura?")) ImGui::OpenPopup("Quit Sutura?");
+  if (ImGui::BeginPopupModal("Quit Sutura?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted("Every committed action is in the recording. Quitting now loses:");
+    for (const auto& l : lost) ImGui::BulletText("%s", l.c_str());
+    if (gated_button(s.widgets, "Quit anyway", std::nullopt)) {
+      s.quit = true;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (gated_button(s.widgets, "Keep planning", std::nullopt)) {
+      s.quit_requested = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
 }
 
 void workflow_window(GuiState& s) {

@@ -11,6 +11,9 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
+/// A quit asked for: quits when nothing would be lost, otherwise a modal dialog lists what
+/// would be and offers "Quit anyway" and "Keep planning".
+void quit_dialog(GuiState& s);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
 

@@ -179,7 +179,7 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           std::fflush(stdout);
         }
       } else if (s.contains("quit")) {
-        host.state.quit = true;
+        host.state.quit_requested = true;  // as closing the window: asks first if work would be lost
       } else {
         return fail("unknown step");
       }

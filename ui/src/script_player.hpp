@@ -16,7 +16,7 @@
 //   {"expect": {"message_contains": "text"}}   fail unless a shown message contains the text
 //   {"expect": {"message_not_contains": "text"}}   fail if a shown message contains the text
 //   {"time_frames": N}                 print the mean frame time of the next N frames
-//   {"quit": true}
+//   {"quit": true}                     as closing the window (asks first when work would be lost)
 #include <filesystem>
 #include <functional>
 #include <optional>

@@ -122,7 +122,10 @@ void viewport_input(GuiState& s, float width, float height) {
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
     s.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);
-  if (io.MouseWheel != 0.0f) s.camera.zoom(io.MouseWheel);
+  if (io.MouseWheel != 0.0f) {
+    if (s.hover) s.camera.zoom_towards(s.hover->hit.point, io.MouseWheel);  // zoom to the cursor
+    else s.camera.zoom(io.MouseWheel);
+  }
   // A click is a press and release without dragging.
   if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && io.MouseDragMaxDistanceSqr[0] < 16.0f) click(s, snap_angle);
 }

@@ -31,6 +31,9 @@ class OrbitCamera {
   void look_from(StandardView view);
   /// Scroll: each step towards the target shrinks the distance by 10 % (negative: away).
   void zoom(float steps);
+  /// Scroll with the pointer over `p` (a point on the surface): zooms as zoom() does, moving
+  /// the eye along the line to `p`, so that `p` stays under the pointer.
+  void zoom_towards(const engine::Vec3& p, float steps);
 
   [[nodiscard]] render::Camera camera() const;
   /// Ray from the eye through pixel (x, y) of a width x height viewport, (0, 0) top-left
