@@ -111,12 +111,10 @@ void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int h
   const Overlays overlays = viewport_overlays(s);
   const bool inspect = s.stages.stage() == Stage::Inspect;
   const auto cmap = inspect ? s.view.color_map() : std::nullopt;
-  const render::Camera camera = s.camera.camera();
+  const render::Camera camera = s.shown_camera();
   if (x0 > 0) renderer.draw(make_scene({}, {}, std::nullopt, false), camera, x0, height);
   if (inspect && s.side_by_side) {
-    // Each half is half as wide: back off so the same objects still fit across it.
-    render::Camera wide = camera;
-    for (int k = 0; k < 3; ++k) wide.eye[k] = camera.target[k] + 2.0f * (camera.eye[k] - camera.target[k]);
+    const render::Camera& wide = camera;
     const int half = width / 2;
     render::RenderOptions left, right;
     left.viewport_x = x0;
@@ -260,6 +258,8 @@ int run_gui(const GuiOptions& options) {
       workflow_window(s);
       message_window(s);
       const float view_width = std::max(1.0f, float(width) - s.view_left);
+      s.view_width = view_width;
+      s.view_height = float(height);
       refresh_view(s, view_width / float(height));
       viewport_input(s, view_width, float(height));
       view_captions(s, view_width);

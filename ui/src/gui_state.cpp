@@ -35,6 +35,13 @@ std::vector<std::string> GuiState::unsaved_work() const {
   return out;
 }
 
+render::Camera GuiState::shown_camera() const {
+  render::Camera c = camera.camera();
+  if (stages.stage() == Stage::Inspect && side_by_side)
+    for (int k = 0; k < 3; ++k) c.eye[k] = c.target[k] + 2.0f * (c.eye[k] - c.target[k]);
+  return c;
+}
+
 const app::SceneObject* GuiState::selected() const {
   if (controller.busy()) return nullptr;
   const auto& objs = controller.workspace().objects();

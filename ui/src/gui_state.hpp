@@ -167,6 +167,10 @@ struct GuiState {
   /// left edge, set each frame by workflow_window) down to the bottom.
   float view_left = 0.0f;
   bool quit = false;
+  /// The 3-D view's size in window pixels last frame (snapshots of the view take it).
+  float view_width = 1000.0f, view_height = 800.0f;
+  /// A snapshot op waiting for the answer to "replace the existing file?".
+  std::optional<nlohmann::json> pending_snapshot;
   /// Quit asked for (window closed, File > Quit, a script's quit): quits at once when nothing
   /// would be lost, otherwise asks first (quit_dialog()).
   bool quit_requested = false;
@@ -182,6 +186,9 @@ struct GuiState {
   /// The stage gate for `a`, else missing_op(op) when op is non-empty.
   [[nodiscard]] std::optional<std::string> why_not(Action a, const std::string& op = {}) const;
   [[nodiscard]] const app::SceneObject* selected() const;
+  /// The camera the view shows: the orbit camera, backed off twice as far side by side (each
+  /// half is half as wide, so the same objects still fit across it).
+  [[nodiscard]] render::Camera shown_camera() const;
 
   void info(std::string text);
   void error(std::string text);

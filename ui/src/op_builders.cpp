@@ -127,10 +127,21 @@ json measure_op(const std::string& object, const std::string& name, const engine
           {"plane", {{"origin", point_json(origin)}, {"normal", point_json(normal)}}}};
 }
 
-json snapshot_op(const std::string& file, int width, int height, bool side_by_side,
-                 const std::string& field) {
-  return {{"op", "snapshot"}, {"file", file}, {"width", width}, {"height", height},
-          {"side_by_side", side_by_side}, {"field", field}};
+json snapshot_op(const std::string& file, const SnapshotView& view, bool side_by_side, const std::string& field) {
+  const auto p = [](const render::Point3& v) { return json::array({v[0], v[1], v[2]}); };
+  json op = {{"op", "snapshot"},
+             {"file", file},
+             {"width", view.width},
+             {"height", view.height},
+             {"side_by_side", side_by_side},
+             {"field", field},
+             {"camera",
+              {{"eye", p(view.camera.eye)},
+               {"target", p(view.camera.target)},
+               {"up", p(view.camera.up)},
+               {"fov_deg", view.camera.fov_y_deg}}}};
+  if (view.range && field != "none") op["range"] = {(*view.range)[0], (*view.range)[1]};
+  return op;
 }
 
 json export_op(const std::string& object, const std::string& file) {

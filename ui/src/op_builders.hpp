@@ -1,6 +1,7 @@
 #pragma once
 // The session ops the GUI emits, as JSON lines in the format of docs/session-format.md.
 // Pure functions: what a click means is decided here, in one testable place.
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/resect.hpp"
+#include "sutura/render/camera.hpp"
 
 namespace sutura::ui {
 
@@ -70,7 +72,14 @@ nlohmann::json lumen_profile_op(const std::string& object, const std::string& na
                                 const engine::Vec3& to);
 nlohmann::json measure_op(const std::string& object, const std::string& name,
                           const engine::Vec3& origin, const engine::Vec3& normal);
-nlohmann::json snapshot_op(const std::string& file, int width, int height, bool side_by_side,
+/// The window's view as a snapshot: its camera (eye, target, up, vertical field of view), its
+/// size (each half's, side by side) and, with a field, its colour range.
+struct SnapshotView {
+  render::Camera camera;
+  int width = 1280, height = 960;
+  std::optional<std::array<float, 2>> range;
+};
+nlohmann::json snapshot_op(const std::string& file, const SnapshotView& view, bool side_by_side,
                            const std::string& field);
 nlohmann::json export_op(const std::string& object, const std::string& file);
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,15 @@
 namespace sutura::ui {
 
 namespace {
+
+namespace fs = std::filesystem;
+
+// Records and runs the snapshot op waiting in s.pending_snapshot.
+void save_pending_snapshot(GuiState& s) {
+  const nlohmann::json op = *s.pending_snapshot;
+  s.pending_snapshot.reset();
+  s.perform(op, "Snapshot saved to " + (s.controller.options().out_dir / op["file"].get<std::string>()).string());
+}
 
 // The measure op's before/after numbers as a table (its report details: values.before,
 // values.after, values.area_change_percent).
@@ -240,9 +250,32 @@ void inspect_section(GuiState& s) {
   ImGui::Separator();
   ImGui::InputText("snapshot file", s.snapshot_file, sizeof s.snapshot_file);
   if (gated_button(s.widgets, "Save snapshot", s.why_not(Action::SaveSnapshot),
-                   "PNG in the output directory, rendered off-screen like `sutura replay`."))
-    s.perform(snapshot_op(s.snapshot_file, 1280, 960, s.side_by_side, session_field_name(s.field)),
-              "Snapshot saved to " + (s.controller.options().out_dir / s.snapshot_file).string());
+                   "The view as it is (camera, size, colour range) as a PNG in the output "
+                   "directory, rendered off-screen like `sutura replay`.")) {
+    SnapshotView view;
+    view.camera = s.shown_camera();
+    const float width = s.side_by_side ? 0.5f * s.view_width : s.view_width;
+    view.width = std::clamp(int(width), 16, 8192);
+    view.height = std::clamp(int(s.view_height), 16, 8192);
+    if (const auto cmap = s.view.color_map()) view.range = std::array<float, 2>{cmap->min, cmap->max};
+    s.pending_snapshot = snapshot_op(s.snapshot_file, view, s.side_by_side, session_field_name(s.field));
+    if (!fs::exists(s.controller.options().out_dir / s.snapshot_file)) save_pending_snapshot(s);
+  }
+  if (s.pending_snapshot && !ImGui::IsPopupOpen("Replace the snapshot?")) ImGui::OpenPopup("Replace the snapshot?");
+  if (ImGui::BeginPopupModal("Replace the snapshot?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s already exists in the output directory.", s.snapshot_file);
+    if (gated_button(s.widgets, "Replace it", std::nullopt)) {
+      save_pending_snapshot(s);
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (gated_button(s.widgets, "Keep it", std::nullopt)) {
+      s.pending_snapshot.reset();
+      s.info("Snapshot not saved: change the file name to keep both.");
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
   ImGui::InputText("export file", s.export_file, sizeof s.export_file);
   if (gated_button(s.widgets, "Export mesh", s.why_not(Action::ExportMesh)) && s.selected())
     s.perform(export_op(s.selected()->name, s.export_file),
