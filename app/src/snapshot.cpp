@@ -226,8 +226,9 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   const render::Scene after_scene = scene_for(op, after, cmap);
   const render::Scene before_scene = scene_for(op, before, cmap);
 
-  // Both views share one camera so before and after are directly comparable.
-  const float aspect = float(op.width) / float(op.height);
+  // Both views share one camera so before and after are directly comparable; each is drawn
+  // left of the legend's column (only the right one draws the legend).
+  const float aspect = float(op.width - render::legend_width(after_scene, op.width, op.height)) / float(op.height);
   render::Camera camera;
   if (op.camera.eye) {
     camera.eye = to_point(*op.camera.eye);
@@ -247,7 +248,10 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   }
   render::Image right = renderer_->render(after_scene, camera, op.width, op.height);
   if (!op.side_by_side) return right;
-  render::Image left = renderer_->render(before_scene, camera, op.width, op.height);
+  render::RenderOptions left_options;
+  left_options.draw_legend = false;  // one legend, on the right, serves both views
+  left_options.legend_space = true;
+  render::Image left = renderer_->render(before_scene, camera, op.width, op.height, left_options);
   return op.compare_rest ? render::side_by_side(left, right, "Rest shape", "Shape")
                          : render::side_by_side(left, right, "Before", "After");
 }

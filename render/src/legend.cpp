@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <optional>
 #include <string>
 
 #include "text.hpp"
@@ -68,23 +69,66 @@ std::string wrap_words(const std::string& text, int max_width, int scale) {
 
 }  // namespace
 
-std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int height,
-                                            const Color& background) {
+namespace {
+
+// Where everything of the legend goes in a width x height viewport.
+struct Layout {
+  int s = 1;  // integer font scale
+  int margin = 0, gap = 0, bar_w = 0, bar_h = 0;
+  int bar_x0 = 0, bar_x1 = 0, bar_y0 = 0, bar_y1 = 0;
+  std::string max_text, min_text, label;  // label wrapped to the column
+  int label_x = 0;
+  int column_left = 0;  // leftmost legend pixel, less a margin: the scene is drawn left of it
+};
+
+std::optional<Layout> layout(const ColorMap& map, int width, int height) {
+  Layout l;
   // Layout in font units times an integer scale, height / 360 rounded: 1 below 540 px,
   // 2 at 600 and 720 px, 3 at 1080 px, at most 4.
-  const int s = std::clamp((height + 180) / 360, 1, 4);
-  const int margin = 12 * s;
-  const int gap = 4 * s;  // between bar and numbers
-  const int bar_w = 8 * s;
-  const int bar_h = height * 2 / 5;
-  const std::string max_text = format_number(map.max);
-  const std::string min_text = format_number(map.min);
-  const int numbers_w = std::max(text_width(max_text, s), text_width(min_text, s));
-  const int bar_x1 = width - margin - numbers_w - gap;
-  const int bar_x0 = bar_x1 - bar_w;
-  if (bar_h < 16 || bar_x0 - s < width / 2) return {};
-  const int bar_y0 = (height - bar_h) / 2;
-  const int bar_y1 = bar_y0 + bar_h;
+  l.s = std::clamp((height + 180) / 360, 1, 4);
+  const int s = l.s;
+  l.margin = 12 * s;
+  l.gap = 4 * s;  // between bar and numbers
+  l.bar_w = 8 * s;
+  l.bar_h = height * 2 / 5;
+  l.max_text = format_number(map.max);
+  l.min_text = format_number(map.min);
+  const int numbers_w = std::max(text_width(l.max_text, s), text_width(l.min_text, s));
+  l.bar_x1 = width - l.margin - numbers_w - l.gap;
+  l.bar_x0 = l.bar_x1 - l.bar_w;
+  l.bar_y0 = (height - l.bar_h) / 2;
+  l.bar_y1 = l.bar_y0 + l.bar_h;
+  l.column_left = l.bar_x0 - s;
+  if (!map.label.empty()) {
+    // Above the max value, wrapped at spaces to the column of bar and numbers (a single word
+    // wider than that keeps its line and widens the column); lines flush left, the block
+    // right-aligned with the numbers.
+    l.label = wrap_words(map.label, numbers_w + l.gap + l.bar_w + s, s);
+    l.label_x = std::max(width - l.margin - text_width(l.label, s), 0);
+    l.column_left = std::min(l.column_left, l.label_x);
+  }
+  l.column_left -= l.margin;
+  if (l.bar_h < 16 || l.column_left < width / 2) return std::nullopt;
+  return l;
+}
+
+}  // namespace
+
+int legend_width(const ColorMap& map, int width, int height) {
+  if (!map.show_legend) return 0;
+  const auto l = layout(map, width, height);
+  return l ? width - l->column_left : 0;
+}
+
+std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int height,
+                                            const Color& background) {
+  const auto layout_or_none = layout(map, width, height);
+  if (!layout_or_none) return {};
+  const Layout& l = *layout_or_none;
+  const int s = l.s, gap = l.gap;
+  const int bar_x0 = l.bar_x0, bar_x1 = l.bar_x1, bar_y0 = l.bar_y0, bar_y1 = l.bar_y1;
+  const std::string& max_text = l.max_text;
+  const std::string& min_text = l.min_text;
 
   // Relative luminance of the linear background colour.
   const float luminance =
@@ -101,16 +145,10 @@ std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int 
   const int half_cap = (kTextCapUnits * s + 1) / 2;
   list.text(max_text, bar_x1 + gap, bar_y0 - half_cap, s, ink);
   list.text(min_text, bar_x1 + gap, bar_y1 - half_cap, s, ink);
-  if (!map.label.empty()) {
-    // Above the max value, wrapped at spaces to the right third of the picture so that a
-    // long label ("max principal membrane strain [-] (top 0.5 % clipped)") does not run
-    // across the object in the middle; lines flush left, the block right-aligned with the
-    // numbers. A single word wider than that keeps its line.
-    const std::string text = wrap_words(map.label, std::max(width / 3, numbers_w + gap + bar_w), s);
-    const int lines = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-    const int x = std::max(width - margin - text_width(text, s), 0);
+  if (!l.label.empty()) {
+    const int lines = 1 + static_cast<int>(std::count(l.label.begin(), l.label.end(), '\n'));
     const int y = bar_y0 - half_cap - gap - kTextDescentUnits * s - (lines - 1) * kTextLineUnits * s;
-    list.text(text, x, std::max(y, 0), s, ink);
+    list.text(l.label, l.label_x, std::max(y, 0), s, ink);
   }
   return out;
 }

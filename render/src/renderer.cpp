@@ -290,7 +290,10 @@ struct Renderer::Impl {
     // Everything that can reject the input comes before the first GL state change.
     for (const SurfaceItem& item : scene.surfaces) validate_surface(item);
     const std::array<Point3, 2> bounds = scene_bounds(scene);
-    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    const bool legend = options.draw_legend && scene.color_map && scene.color_map->show_legend;
+    // The scene is drawn left of the legend's column, never under it.
+    const int scene_width = width - (legend || options.legend_space ? legend_width(scene, width, height) : 0);
+    const float aspect = static_cast<float>(scene_width) / static_cast<float>(height);
     const std::array<float, 2> depth = depth_range(camera, bounds);
     const float radius = 0.5f * length(bounds[1] - bounds[0]);
     const FrameSetup frame{view_matrix(camera),
@@ -307,9 +310,11 @@ struct Renderer::Impl {
     gl.Disable(GL_CULL_FACE);  // both sides of every surface are drawn
     gl.Disable(GL_BLEND);
 
+    gl.Viewport(x0, y0, scene_width, height);
     draw_surfaces(scene, frame);
-    draw_markers(scene, frame, width, height);
-    if (options.draw_legend && scene.color_map && scene.color_map->show_legend) {
+    draw_markers(scene, frame, scene_width, height);
+    if (legend) {
+      gl.Viewport(x0, y0, width, height);
       draw_legend(scene, width, height);
     }
 
@@ -407,6 +412,10 @@ struct Renderer::Impl {
 // bytes each) and clears them all: 4 samples of 8192 x 8192 pixels are 2.1 GB to touch and
 // clear per render. The budget gives full anti-aliasing up to 4096 x 4096, where it is
 // visible, and none at 8192 x 8192, where a pixel is too small for the edges to need it.
+int legend_width(const Scene& scene, int width, int height) {
+  return scene.color_map ? legend_width(*scene.color_map, width, height) : 0;
+}
+
 int render_samples(int requested, int width, int height, int max_samples) {
   constexpr std::int64_t kSampleBudget = 4LL * 4096 * 4096;
   const std::int64_t pixels = std::max<std::int64_t>(1, std::int64_t(width) * height);

@@ -97,24 +97,29 @@ class RenderSnapshot : public ::testing::Test {
     return renderer_->render(scene, camera, w, h, options);
   }
 
-  /// A unit sphere coloured by height with a legend labelled `label`, rendered w x h with and
-  /// without the legend. Holds the mesh and scalars the scene only views.
+  /// A unit sphere coloured by height with a legend labelled `label`, rendered w x h with the
+  /// legend, with its column kept free but no legend, and with neither; the camera is fitted
+  /// to the part left of the column. Holds the mesh and scalars the scene only views.
   struct HeightLegend {
     TestMesh sphere = uv_sphere(1.0f, 32, 64);
     std::vector<float> z;
     Scene scene;
     Camera camera;
-    Image with, without;
+    int column = 0;
+    Image with, space, without;
     HeightLegend(const std::string& label, int w, int h) {
       for (std::size_t v = 0; v < sphere.vertex_count(); ++v) z.push_back(sphere.positions[3 * v + 2]);
       scene.surfaces.push_back(sphere.surface());
       scene.surfaces[0].scalars = z;
       scene.color_map = ColorMap{ColorMapName::Viridis, -1.0f, 1.0f, label, true};
-      camera = fit_camera(scene_bounds(scene), static_cast<float>(w) / h);
+      column = legend_width(scene, w, h);
+      camera = fit_camera(scene_bounds(scene), static_cast<float>(w - column) / h);
       with = render(scene, camera, w, h);
       RenderOptions no_legend;
       no_legend.draw_legend = false;
       without = render(scene, camera, w, h, no_legend);
+      no_legend.legend_space = true;
+      space = render(scene, camera, w, h, no_legend);
     }
     HeightLegend(const HeightLegend&) = delete;
     HeightLegend& operator=(const HeightLegend&) = delete;
@@ -312,28 +317,40 @@ TEST_F(RenderSnapshot, PointsShowOnTheSurfaceAndInFreeSpace) {
   EXPECT_EQ(image.pixel(free_point[0] + 5, free_point[1] + 5), kWhite);  // corner of the square
 }
 
-TEST_F(RenderSnapshot, LegendAddsTextAndBarOnTheRightOnly) {
+TEST_F(RenderSnapshot, LegendTakesAColumnOnTheRightAndTheSceneIsDrawnLeftOfIt) {
   const int w = 320;
   const int h = 240;
   HeightLegend legend("height [mm]", w, h);
   const Image& with = legend.with;
-  const Image& without = legend.without;
   keep(with, "legend");
-  int changed = 0;
-  int dark = 0;
+  ASSERT_GT(legend.column, 0);
+  ASSERT_LE(legend.column, w / 2);
+  const int left = w - legend.column;
+  const auto background = legend.space.pixel(0, 0);
+  int changed = 0, dark = 0, sphere_left = 0;
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      if (with.pixel(x, y) == without.pixel(x, y)) continue;
-      EXPECT_GE(x, w / 2) << "legend pixel in the left half at " << x << "," << y;
+      if (x < left) {
+        // Left of the column: the scene, exactly as drawn with the column kept free.
+        EXPECT_EQ(with.pixel(x, y), legend.space.pixel(x, y)) << x << "," << y;
+        sphere_left += legend.space.pixel(x, y) != background ? 1 : 0;
+        continue;
+      }
+      // In the column: nothing of the scene, only the legend.
+      EXPECT_EQ(legend.space.pixel(x, y), background) << "scene pixel under the legend at " << x << "," << y;
+      if (with.pixel(x, y) == background) continue;
       ++changed;
       dark += luminance(with.pixel(x, y)) < 60 ? 1 : 0;
     }
   }
   EXPECT_GT(changed, 400);
   EXPECT_GT(dark, 100);  // frame and text
-
+  EXPECT_GT(sphere_left, 5000);
+  // Without the legend the scene takes the whole width.
+  EXPECT_NE(legend.without.rgba, legend.space.rgba);
   legend.scene.color_map->show_legend = false;
-  EXPECT_EQ(render(legend.scene, legend.camera, w, h).rgba, without.rgba);
+  EXPECT_EQ(legend_width(legend.scene, w, h), 0);
+  EXPECT_EQ(render(legend.scene, legend.camera, w, h).rgba, legend.without.rgba);
 }
 
 TEST_F(RenderSnapshot, LongLegendLabelWrapsInsteadOfCrossingThePicture) {
@@ -344,13 +361,13 @@ TEST_F(RenderSnapshot, LongLegendLabelWrapsInsteadOfCrossingThePicture) {
   const int h = 480;
   const HeightLegend legend("max principal membrane strain [-] (top 0.5 % clipped)", w, h);
   const Image& with = legend.with;
-  const Image& without = legend.without;
   keep(with, "legend_long_label");
   int leftmost = w, top = h;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (with.pixel(x, y) != without.pixel(x, y)) leftmost = std::min(leftmost, x), top = std::min(top, y);
+      if (with.pixel(x, y) != legend.space.pixel(x, y)) leftmost = std::min(leftmost, x), top = std::min(top, y);
   EXPECT_GE(leftmost, w - w / 3 - 12) << "the label runs into the picture";
+  EXPECT_GE(leftmost, w - legend.column) << "the label leaves the legend's column";
   // The bar starts at 3/10 of the height; two or more label lines reach above it by more
   // than one line (12 font units at scale 1 for 480 px).
   EXPECT_LT(top, (h - h * 2 / 5) / 2 - 2 * 12);

@@ -119,6 +119,7 @@ void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int h
     render::RenderOptions left, right;
     left.viewport_x = x0;
     left.draw_legend = false;  // one legend (on the right) serves both views
+    left.legend_space = true;  // both halves frame the scene alike, as the snapshot does
     right.viewport_x = x0 + half;
     renderer.draw(make_scene(s.view.before(), {}, cmap, s.wireframe), wide, half, height, left);
     renderer.draw(make_scene(s.view.current(), overlays, cmap, s.wireframe), wide, width - half,
@@ -260,8 +261,16 @@ int run_gui(const GuiOptions& options) {
       const float view_width = std::max(1.0f, float(width) - s.view_left);
       s.view_width = view_width;
       s.view_height = float(height);
-      refresh_view(s, view_width / float(height));
-      viewport_input(s, view_width, float(height));
+      // With a legend the single view is drawn left of its column (render::legend_width):
+      // camera fits and picking rays take that part.
+      float scene_width = view_width;
+      if (s.stages.stage() == Stage::Inspect && !s.side_by_side) {
+        render::Scene legend_only;
+        legend_only.color_map = s.view.color_map();
+        scene_width -= float(render::legend_width(legend_only, int(view_width), height));
+      }
+      refresh_view(s, scene_width / float(height));
+      viewport_input(s, std::max(1.0f, scene_width), float(height));
       view_captions(s, view_width);
     } catch (const std::exception& e) {
       s.error(e.what());

@@ -18,11 +18,21 @@ namespace sutura::render {
 struct RenderOptions {
   int samples = 4;          ///< MSAA samples for anti-aliasing (1 = off)
   bool draw_legend = true;  ///< colour bar with min/max and label when the scene has one
+  /// Keep the legend's column free without drawing the legend (the left view of a pair whose
+  /// right view has it, so that both frame the scene alike).
+  bool legend_space = false;
   /// draw() only: lower-left corner, in pixels of the bound framebuffer, of the area drawn
   /// (and cleared); render() ignores it.
   int viewport_x = 0;
   int viewport_y = 0;
 };
+
+/// Pixels of the column the scene's legend takes at the right edge of a width x height view:
+/// 0 without a colour map, with its show_legend off, or when the legend would not fit (more
+/// than half the width). With a legend drawn (or legend_space), the scene is drawn in the view
+/// less this column, with that part's aspect, so that the legend never covers it: fit
+/// cameras and cast picking rays for (width - legend_width) x height.
+int legend_width(const Scene& scene, int width, int height);
 
 /// The MSAA samples render() uses: `requested`, clamped to [1, max_samples] (GL_MAX_SAMPLES;
 /// 4 on llvmpipe) and to at most 4 x 4096 x 4096 samples in all, so 4 up to 4096 x 4096
