@@ -16,6 +16,10 @@ struct OverlayVertex {
   float r, g, b;
 };
 
+/// Pixels of the legend's column at the right edge of a width x height viewport (with a
+/// margin on its left); 0 when it would not fit or map.show_legend is off.
+int legend_width(const ColorMap& map, int width, int height);
+
 /// Triangles (3 vertices each) of the legend for a `width` x `height` viewport, all within
 /// its column at the right edge (legend_width). Text is dark on light backgrounds and light
 /// on dark ones. Empty when the legend would not fit: its column must take at most half the
@@ -23,10 +27,6 @@ struct OverlayVertex {
 /// the column of bar and numbers.
 /// Numbers use the shortest of 4 significant digits ("0.25", "1.5e+03"), independent of
 /// the C locale.
-/// Pixels of the legend's column at the right edge of a width x height viewport (with a
-/// margin on its left); 0 when it would not fit or map.show_legend is off.
-int legend_width(const ColorMap& map, int width, int height);
-
 std::vector<OverlayVertex> legend_triangles(const ColorMap& map, int width, int height,
                                             const Color& background);
 

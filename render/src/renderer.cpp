@@ -408,14 +408,14 @@ struct Renderer::Impl {
   }
 };
 
-// llvmpipe keeps every sample of a multisampled framebuffer in memory (colour and depth, 8
-// bytes each) and clears them all: 4 samples of 8192 x 8192 pixels are 2.1 GB to touch and
-// clear per render. The budget gives full anti-aliasing up to 4096 x 4096, where it is
-// visible, and none at 8192 x 8192, where a pixel is too small for the edges to need it.
 int legend_width(const Scene& scene, int width, int height) {
   return scene.color_map ? legend_width(*scene.color_map, width, height) : 0;
 }
 
+// llvmpipe keeps every sample of a multisampled framebuffer in memory (colour and depth, 8
+// bytes each) and clears them all: 4 samples of 8192 x 8192 pixels are 2.1 GB to touch and
+// clear per render. The budget gives full anti-aliasing up to 4096 x 4096, where it is
+// visible, and none at 8192 x 8192, where a pixel is too small for the edges to need it.
 int render_samples(int requested, int width, int height, int max_samples) {
   constexpr std::int64_t kSampleBudget = 4LL * 4096 * 4096;
   const std::int64_t pixels = std::max<std::int64_t>(1, std::int64_t(width) * height);

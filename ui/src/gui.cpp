@@ -211,6 +211,7 @@ int run_gui(const GuiOptions& options) {
 
   std::optional<fs::path> screenshot_to;
   int exit_code = 0;
+  int script_quit_frames = 0;
   auto last = std::chrono::steady_clock::now();
   double frame_seconds = 0.0;
   int idle_frames = 0;
@@ -232,11 +233,20 @@ int run_gui(const GuiOptions& options) {
     glfwGetFramebufferSize(glfw, &fb_width, &fb_height);
     if (width <= 0 || height <= 0 || fb_width <= 0 || fb_height <= 0) continue;  // minimised
     if (script) {
-      ScriptHost host{input, s, s.view_left, float(width) - s.view_left, float(height),
+      // The part of the view the scene is drawn in (left of a legend), as picking sees it.
+      ScriptHost host{input, s, s.view_left, s.scene_width, float(height),
                       [&](const fs::path& p) { screenshot_to = p; }};
       script->step(host, frame_seconds);
       if (script->failure()) {
         std::cerr << "sutura: " << *script->failure() << "\n";
+        exit_code = 3;
+        break;
+      }
+      // A script that ended asking to quit, while the window still waits (an unanswered
+      // quit dialog), fails instead of spinning until a test's timeout.
+      script_quit_frames = script->done() && s.quit_requested ? script_quit_frames + 1 : 0;
+      if (script_quit_frames > 100) {
+        std::cerr << "sutura: the script ended but the window did not quit (a dialog is waiting)\n";
         exit_code = 3;
         break;
       }
@@ -263,12 +273,17 @@ int run_gui(const GuiOptions& options) {
       s.view_height = float(height);
       // With a legend the single view is drawn left of its column (render::legend_width):
       // camera fits and picking rays take that part.
+      // The renderer lays the legend out in framebuffer pixels (its font scale steps with the
+      // height), so its column is measured there and brought back to window pixels.
       float scene_width = view_width;
       if (s.stages.stage() == Stage::Inspect && !s.side_by_side) {
         render::Scene legend_only;
         legend_only.color_map = s.view.color_map();
-        scene_width -= float(render::legend_width(legend_only, int(view_width), height));
+        const int x0 = std::clamp(int(s.view_left * float(fb_width) / float(width)), 0, fb_width - 1);
+        const int column = render::legend_width(legend_only, fb_width - x0, fb_height);
+        scene_width = std::max(1.0f, view_width - float(column) * float(width) / float(fb_width));
       }
+      s.scene_width = scene_width;
       refresh_view(s, scene_width / float(height));
       viewport_input(s, std::max(1.0f, scene_width), float(height));
       view_captions(s, view_width);
@@ -301,6 +316,11 @@ int run_gui(const GuiOptions& options) {
       screenshot_to.reset();
     }
     glfwSwapBuffers(glfw);
+  }
+  // The step in progress may be the click that quit ("Quit anyway"); any later one never ran.
+  if (script && exit_code == 0 && script->steps_left() > 1) {
+    std::cerr << "sutura: the window quit before the script ended\n";
+    exit_code = 3;
   }
   glfwSetCursor(glfw, nullptr);
   for (GLFWcursor* c : cursors)

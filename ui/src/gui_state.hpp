@@ -31,7 +31,6 @@ struct IncisionDraft {
   bool snap = false;  ///< snap to edges ("snap") or cut through faces ("cut")
 };
 
-/// Two boundary chains picked as from/to points; filled in click order a.from, a.to, b.from, b.to.
 /// Resection: one click on the vessel wall per cut plane (resect_preview.hpp).
 struct ResectDraft {
   std::vector<engine::Vec3> clicks;
@@ -39,6 +38,7 @@ struct ResectDraft {
   float reach = 0.0f;       ///< mm, the op's `radius`; 0 = automatic
 };
 
+/// Two boundary chains, each named by clicking its two ends (suture_preview.hpp).
 struct SutureDraft {
   std::vector<engine::Vec3> clicks;  ///< in click order; orient_suture_clicks reads them
   std::array<bool, 2> long_way = {false, false};  ///< per side: the longer arc between its ends
@@ -169,6 +169,9 @@ struct GuiState {
   bool quit = false;
   /// The 3-D view's size in window pixels last frame (snapshots of the view take it).
   float view_width = 1000.0f, view_height = 800.0f;
+  /// The part of the view's width the scene is drawn in (left of a legend's column), window
+  /// pixels; picking and scripted clicks use it.
+  float scene_width = 1000.0f;
   /// A snapshot op waiting for the answer to "replace the existing file?".
   std::optional<nlohmann::json> pending_snapshot;
   /// Quit asked for (window closed, File > Quit, a script's quit): quits at once when nothing

@@ -249,7 +249,12 @@ void inspect_section(GuiState& s) {
   }
   ImGui::Separator();
   ImGui::InputText("snapshot file", s.snapshot_file, sizeof s.snapshot_file);
-  if (gated_button(s.widgets, "Save snapshot", s.why_not(Action::SaveSnapshot),
+  // A snapshot shows the after state, or before | after side by side: not the before state
+  // alone, so the window's "Show before" view cannot be saved as it is.
+  std::optional<std::string> no_snapshot = s.why_not(Action::SaveSnapshot);
+  if (!no_snapshot && s.show_before && !s.side_by_side)
+    no_snapshot = "A snapshot shows the after state or both side by side: turn off Show before.";
+  if (gated_button(s.widgets, "Save snapshot", no_snapshot,
                    "The view as it is (camera, size, colour range) as a PNG in the output "
                    "directory, rendered off-screen like `sutura replay`.")) {
     SnapshotView view;

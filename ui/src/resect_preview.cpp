@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
 
 namespace sutura::ui {
@@ -49,6 +50,8 @@ SectionCut cut_at(const engine::SurfaceMesh& mesh, const engine::CentrelineTree&
     const double score = std::abs(axial) + std::abs((d - axial * t).norm() - tree.radii[k]);
     if (score < best_score) best_score = score, best = k, best_t = t;
   }
+  if (!(best_score < std::numeric_limits<double>::infinity()))
+    throw engine::InvalidArgument("the vessel's centreline has no segment to cut across");
   // The lumen outline in that plane, within a few radii of the click's distance from the
   // point (a severe narrowing can put the centreline near the wall): its centroid is the cut's
   // centre, the farthest outline point from it the reach the cut needs.

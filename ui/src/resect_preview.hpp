@@ -25,8 +25,8 @@ struct SectionCut {
 /// The cut for a click at `click` on the wall: perpendicular to the centreline at the point
 /// whose section the click lies on (least |offset along the tangent| + |distance across -
 /// inscribed radius|; at a branch point the tangent runs along the most nearly straight pair
-/// of edges), centred on the lumen outline in that plane. Throws InvalidArgument when the
-/// plane does not cut the surface there. O(tree points + F).
+/// of edges), centred on the lumen outline in that plane. Throws InvalidArgument when the tree
+/// has no edge or the plane does not cut the surface there. O(tree points + F).
 SectionCut cut_at(const engine::SurfaceMesh& mesh, const engine::CentrelineTree& tree, const engine::Vec3& click);
 
 struct ResectPreview {

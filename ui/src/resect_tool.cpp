@@ -82,7 +82,10 @@ void resect_controls(GuiState& s) {
 
 void commit_resection(GuiState& s) {
   const app::SceneObject* obj = s.selected();
-  if (s.tool != Tool::Resect || !obj || s.resect.clicks.size() < 2 || s.resect_preview.planes.size() < 2 ||
+  // The preview of these clicks on this mesh (the panel that refreshes it may be collapsed).
+  const engine::CentrelineTree* tree = obj ? centreline(s, *obj) : nullptr;
+  if (tree) refresh_preview(s, *obj, *tree);
+  if (s.tool != Tool::Resect || !tree || s.resect.clicks.size() < 2 || s.resect_preview.planes.size() < 2 ||
       !s.resect_preview.error.empty()) {
     s.error("A resection needs two cuts that the preview accepts.");
     return;

@@ -47,6 +47,8 @@ class ScriptPlayer {
   /// Runs this frame's part of the script. `frame_seconds` is the last frame's duration.
   void step(ScriptHost& host, double frame_seconds);
   [[nodiscard]] bool done() const { return next_ >= steps_.size() || failure_.has_value(); }
+  /// Steps not finished yet, the one in progress included.
+  [[nodiscard]] std::size_t steps_left() const { return next_ < steps_.size() ? steps_.size() - next_ : 0; }
   [[nodiscard]] const std::optional<std::string>& failure() const { return failure_; }
 
  private:

@@ -1,6 +1,7 @@
 #include "view_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <limits>
 
@@ -132,7 +133,8 @@ std::optional<render::ColorMap> ViewCache::color_map() const {
     for (const auto& a : *set)
       for (float s : a.scalars) lo = std::min(lo, s), hi = std::max(hi, s);
   if (lo > hi) return std::nullopt;
-  if (!(hi > lo)) hi = lo + 1.0f;
+  // A constant field still needs a range, one that a float can tell from its start.
+  if (!(hi > lo)) hi = lo + std::max(1.0f, 1e-3f * std::abs(lo));
   render::ColorMap c;
   c.min = lo;
   c.max = hi;
