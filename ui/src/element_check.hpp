@@ -1,11 +1,8 @@
 #pragma once
 // Element quality checked before a run: rest triangles (each face's stress-free shape, the x0
-// a relaxation pulls towards) so thin that the run cannot stretch them. Measured 2026-12-06
-// (docs/gui.md): runs whose smallest rest angle was 0.011, 2.0 and 8.8 degrees failed (the
-// first two are raw cut-through incisions and patches, `"remesh": false`; the third is the
-// first after remeshing the whole object), while the same plans remeshed as the window
-// records them (smallest rest angle 24 to 26 degrees) ran. Below kRefuseDeg the window
-// refuses to start; below kWarnDeg it starts but says the run may fail.
+// a relaxation pulls towards) so thin that the run cannot stretch them. Below kRefuseDeg the
+// window refuses to start; below kWarnDeg it starts but says the run may fail. The limits and
+// the runs they come from: docs/gui.md (Simulate).
 #include <optional>
 #include <string>
 #include <vector>

@@ -54,6 +54,12 @@ std::array<render::Point3, 2> bounds_of(const std::vector<ObjectArrays>& objects
   return render::scene_bounds(scene);
 }
 
+// Framebuffer column of window x coordinate `x` (window `width`, framebuffer `fb_width` pixels
+// wide), within the framebuffer.
+int framebuffer_x(float x, int width, int fb_width) {
+  return std::clamp(int(x * float(fb_width) / float(width)), 0, fb_width - 1);
+}
+
 // Worker results change the stage: finished -> Inspect, failed or cancelled -> Plan.
 void finish_worker(GuiState& s) {
   const auto outcome = s.controller.poll();
@@ -271,15 +277,15 @@ int run_gui(const GuiOptions& options) {
       const float view_width = std::max(1.0f, float(width) - s.view_left);
       s.view_width = view_width;
       s.view_height = float(height);
-      // With a legend the single view is drawn left of its column (render::legend_width):
-      // camera fits and picking rays take that part.
-      // The renderer lays the legend out in framebuffer pixels (its font scale steps with the
-      // height), so its column is measured there and brought back to window pixels.
+      // With a legend the single view is drawn left of its column (render::legend_width), so
+      // camera fits and picking rays take that part. The renderer lays the legend out in
+      // framebuffer pixels (its font scale steps with the height): the column is measured
+      // there and brought back to window pixels.
       float scene_width = view_width;
       if (s.stages.stage() == Stage::Inspect && !s.side_by_side) {
         render::Scene legend_only;
         legend_only.color_map = s.view.color_map();
-        const int x0 = std::clamp(int(s.view_left * float(fb_width) / float(width)), 0, fb_width - 1);
+        const int x0 = framebuffer_x(s.view_left, width, fb_width);
         const int column = render::legend_width(legend_only, fb_width - x0, fb_height);
         scene_width = std::max(1.0f, view_width - float(column) * float(width) / float(fb_width));
       }
@@ -298,7 +304,7 @@ int run_gui(const GuiOptions& options) {
 
     window.make_current();  // snapshots render off-screen and leave OSMesa current
     try {
-      const int x0 = std::clamp(int(s.view_left * float(fb_width) / float(width)), 0, fb_width - 1);
+      const int x0 = framebuffer_x(s.view_left, width, fb_width);
       draw_view(s, renderer, x0, fb_width - x0, fb_height);
     } catch (const std::exception& e) {
       s.error(std::string("drawing the view: ") + e.what());
