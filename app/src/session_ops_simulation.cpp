@@ -215,6 +215,11 @@ SimulateOp parse_simulate(Fields& f) {
     rp.steps = r->optional_int("steps", rp.steps, 1, 1000000);
     rp.s_end = r->optional_number("until", 1.0);
     if (!(rp.s_end > 0.0 && rp.s_end <= 1.0)) r->fail("until", "must be in (0, 1]");
+    if (r->has("density")) {
+      if (rp.solver != engine::RelaxationSolver::Dynamic)
+        r->fail("density", "only the dynamic relaxation has a density (it sets its pace)");
+      rp.density = r->optional_positive("density", 1.0);
+    }
     rp.settle = r->optional_bool("settle", rp.settle);
     if (!rp.settle && r->has("settle_steps"))
       r->fail("settle_steps", "has no effect with \"settle\": false (no settling at all)");

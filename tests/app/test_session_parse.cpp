@@ -191,6 +191,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"settle\": false, "
                           "\"settle_steps\": 30}}\n",
                 2, "relax.settle_steps", "no effect"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"density\": 1e-6}}\n", 2,
+                "relax.density", "only the dynamic relaxation"},
+        BadCase{kHeader + "{\"op\": \"simulate\", \"relax\": {\"solver\": \"dynamic\", "
+                          "\"density\": 0}}\n",
+                2, "relax.density", "greater than 0"},
         BadCase{kHeader + "{\"op\": \"solve\", \"analysis\": \"linear\", \"check_stability\": true}\n",
                 2, "check_stability", "nonlinear"},
         BadCase{kHeader + "{\"op\": \"solve\", \"analysis\": \"linear\", \"minimize\": true}\n",

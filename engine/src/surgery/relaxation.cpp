@@ -66,6 +66,8 @@ void check(const ShellSystem& sys, const RestState& rest, const RestState& y0,
   if (p.settle_steps < 0) throw InvalidArgument("settle_steps must be >= 0");
   if (p.max_cuts < 0) throw InvalidArgument("max_cuts must be >= 0");
   if (p.max_escapes < 0) throw InvalidArgument("max_escapes must be >= 0");
+  if (p.density && !(*p.density > 0.0 && std::isfinite(*p.density)))
+    throw InvalidArgument("the relaxation's density must be finite and > 0 (t/mm^3)");
   if (!(p.increment_tolerance > 0.0 && p.increment_tolerance < 1.0))
     throw InvalidArgument("increment_tolerance must be in (0, 1)");
 }
@@ -376,7 +378,16 @@ RelaxationResult relax_dynamic(const ShellSystem& sys, RestState& rest, const Re
     rest = rest_at(y0, x0, s_now);
     return true;
   };
-  const DynamicsResult r = simulate_dynamics(sys, ds, dp, step_hook);
+  // The pace-setting density (RelaxationParams::density): the same system with every
+  // material's density replaced; only the mass reads it.
+  ShellSystem paced = sys;
+  std::vector<ShellMaterial> paced_materials;
+  if (p.density) {
+    paced_materials = *sys.problem.materials;
+    for (ShellMaterial& m : paced_materials) m.density = *p.density;
+    paced.problem.materials = &paced_materials;
+  }
+  const DynamicsResult r = simulate_dynamics(paced, ds, dp, step_hook);
   state = ds.shell;
   result.newton_iterations = r.newton_iterations;
   result.residual = r.residual;

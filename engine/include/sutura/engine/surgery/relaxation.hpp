@@ -75,6 +75,11 @@ struct RelaxationParams {
   /// likewise retried from the pushed shape before it is halved; those pushes count too. 0:
   /// only report.
   int max_escapes = 3;
+  /// Dynamic only, t/mm^3, > 0 when set: the density of the relaxation's dynamics in place of
+  /// every material's own. The dynamics only carry the rest shape through s; their mass sets
+  /// the pace of that path (inertia against buckling at a given dt), not the equilibrium, so a
+  /// plan can choose it without a fictitious density in the material. Unset: the materials'.
+  std::optional<double> density;
   StaticSolverParams statics;   ///< per increment (lambda fixed at 1: loads stay applied)
   DynamicsParams dynamics;      ///< dt, damping, tolerances (steps is ignored)
 };
