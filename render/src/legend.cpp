@@ -81,12 +81,9 @@ struct Layout {
   int column_left = 0;  // leftmost legend pixel, less a margin: the scene is drawn left of it
 };
 
-std::optional<Layout> layout(const ColorMap& map, int width, int height) {
+std::optional<Layout> layout_at_scale(const ColorMap& map, int width, int height, int s) {
   Layout l;
-  // Layout in font units times an integer scale, height / 360 rounded: 1 below 540 px,
-  // 2 at 600 and 720 px, 3 at 1080 px, at most 4.
-  l.s = std::clamp((height + 180) / 360, 1, 4);
-  const int s = l.s;
+  l.s = s;
   l.margin = 12 * s;
   l.gap = 4 * s;  // between bar and numbers
   l.bar_w = 8 * s;
@@ -110,6 +107,16 @@ std::optional<Layout> layout(const ColorMap& map, int width, int height) {
   l.column_left -= l.margin;
   if (l.bar_h < 16 || l.column_left < width / 2) return std::nullopt;
   return l;
+}
+
+// Layout in font units times an integer scale, height / 360 rounded: 1 below 540 px, 2 at 600
+// and 720 px, 3 at 1080 px, at most 4; smaller where the column would take more than half the
+// width (a tall, narrow view: each half of a side-by-side window), so that a colour map is
+// never shown without its legend unless even the smallest font does not fit.
+std::optional<Layout> layout(const ColorMap& map, int width, int height) {
+  for (int s = std::clamp((height + 180) / 360, 1, 4); s >= 1; --s)
+    if (auto l = layout_at_scale(map, width, height, s)) return l;
+  return std::nullopt;
 }
 
 }  // namespace

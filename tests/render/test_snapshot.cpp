@@ -353,6 +353,29 @@ TEST_F(RenderSnapshot, LegendTakesAColumnOnTheRightAndTheSceneIsDrawnLeftOfIt) {
   EXPECT_EQ(render(legend.scene, legend.camera, w, h).rgba, legend.without.rgba);
 }
 
+// Each half of a side-by-side window is tall and narrow (501 x 900 in the subclavian flap's
+// GUI test): at the font of its height the column for this label and these numbers would take
+// more than half the width, so a smaller font is used rather than leaving the colours unexplained.
+TEST_F(RenderSnapshot, ANarrowViewGetsItsLegendInASmallerFont) {
+  const int w = 501, h = 900;
+  HeightLegend legend("max principal membrane strain [-]", w, h);
+  legend.scene.color_map->min = -0.005817f;
+  legend.scene.color_map->max = 0.5693f;
+  const int narrow = legend_width(legend.scene, w, h);
+  ASSERT_GT(narrow, 0);
+  EXPECT_LE(narrow, w / 2);
+  // The same legend in a wide view of the same height keeps the height's (larger) font.
+  EXPECT_GT(legend_width(legend.scene, 3 * w, h), narrow);
+  const Image image = render(legend.scene, legend.camera, w, h);
+  keep(image, "legend_narrow");
+  const auto background = image.pixel(0, 0);
+  int dark = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = w - narrow; x < w; ++x) dark += luminance(image.pixel(x, y)) < 60 ? 1 : 0;
+  EXPECT_GT(dark, 100);  // frame and text drawn
+  EXPECT_EQ(image.pixel(w - narrow, 0), background);
+}
+
 TEST_F(RenderSnapshot, LongLegendLabelWrapsInsteadOfCrossingThePicture) {
   // A label several times wider than a third of the picture is wrapped at its spaces: every
   // legend pixel stays in the right third (plus the margin), and the label takes more than
