@@ -64,6 +64,23 @@ int framebuffer_x(float x, int width, int fb_width) {
 void finish_worker(GuiState& s) {
   const auto outcome = s.controller.poll();
   if (!outcome) return;
+  if (outcome->ok && !s.queued_runs.empty()) {
+    // The next phase starts in this same frame: the run never looks idle in between.
+    const nlohmann::json next = s.queued_runs.front();
+    s.queued_runs.pop_front();
+    std::string why;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2f", outcome->details.value("seconds", 0.0));
+    if (s.controller.start(next, why)) {
+      s.info(outcome->op + " phase finished in " + seconds + " s; the next phase is running");
+      return;
+    }
+    s.queued_runs.clear();
+    s.stages.simulation_cancelled();
+    s.error(outcome->op + ": the next phase could not start: " + why);
+    return;
+  }
+  s.queued_runs.clear();
   if (outcome->ok) {
     s.stages.simulation_finished();
     const nlohmann::json& d = outcome->details;

@@ -40,9 +40,12 @@ struct ResectDraft {
 
 /// Two boundary chains, each named by clicking its two ends (suture_preview.hpp).
 struct SutureDraft {
-  std::vector<engine::Vec3> clicks;  ///< in click order; orient_suture_clicks reads them
+  std::vector<engine::Vec3> clicks;  ///< in click order; suture_sides reads them
   std::array<bool, 2> long_way = {false, false};  ///< per side: the longer arc between its ends
   bool onto_b = false;  ///< join placement onto_b: side A is drawn onto side B (a flap)
+  /// The same point clicked twice on a cut: from one lip round to the other (suture_sides),
+  /// not its whole loop.
+  bool lip_to_lip = false;
 };
 
 /// Fix ends: a whole boundary loop per click, or a run of boundary vertices between two
@@ -83,6 +86,9 @@ struct SimulationSettings {
   /// digits).
   int relax_steps = 3;
   bool collapse_barrier = false;  ///< records "collapse_barrier": true (session-format.md)
+  /// The relaxation method: static (false), or the flap's static-then-damped-dynamics
+  /// (flap_relaxation_ops; the relax steps above do not apply).
+  bool staged_dynamics = false;
 };
 
 struct Message {
@@ -112,6 +118,9 @@ struct GuiState {
   MaterialDraft material;
   float pressure_mmhg = 80.0f;
   SimulationSettings simulation;
+  /// Simulate ops still to start, in order, once the running one has succeeded (the flap
+  /// method's second phase); emptied when a run fails or is cancelled.
+  std::deque<nlohmann::json> queued_runs;
   std::optional<Pick> hover;
 
   // Inspect.

@@ -64,9 +64,15 @@ json incise_op(const std::string& object, const std::vector<engine::Vec3>& point
 
 json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b, bool onto_b) {
   json chains = json::array();
-  for (const auto* c : {&a, &b})
-    chains.push_back(c->from == c->to ? json{{"loop", point_json(c->from)}}
-                                      : json{{"from", point_json(c->from)}, {"to", point_json(c->to)}});
+  for (const auto* c : {&a, &b}) {
+    if (c->loop()) {
+      chains.push_back({{"loop", point_json(c->from)}});
+      continue;
+    }
+    json chain = {{"from", point_json(c->from)}, {"to", point_json(c->to)}};
+    if (c->via) chain["via"] = point_json(*c->via);
+    chains.push_back(chain);
+  }
   // Recorded, as for incise: matched seams whatever the version of a session continued.
   json op = {{"op", "join"}, {"object", object}, {"chains", chains}, {"remesh", true}};
   if (onto_b) op["placement"] = "onto_b";
@@ -113,6 +119,22 @@ json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
     op["scheme"] = "linearized";
   if (collapse_barrier) op["collapse_barrier"] = true;
   return op;
+}
+
+std::vector<json> flap_relaxation_ops(bool collapse_barrier) {
+  // Static while it converges easily; then dynamics, whose inertia carries the gathered flap
+  // through its buckling (a static increment there fails); per-step tolerance 1e-4, the
+  // transient only leading to the settle (session notes in assets/sessions/subclavian_flap.jsonl).
+  json still = {{"op", "simulate"}, {"relax", {{"steps", 16}, {"until", 0.6}}}};
+  json moving = {{"op", "simulate"},
+                 {"relax",
+                  {{"solver", "dynamic"}, {"steps", 80}, {"settle", true}, {"settle_steps", 40},
+                   {"max_iterations", 200}, {"density", 1e-6}}},
+                 {"dt", 5e-4},
+                 {"tolerance", 1e-4},
+                 {"mass_damping", 200.0}};
+  if (collapse_barrier) still["collapse_barrier"] = moving["collapse_barrier"] = true;
+  return {still, moving};
 }
 
 json lumen_profile_op(const std::string& object, const std::string& name, const engine::Vec3& from,

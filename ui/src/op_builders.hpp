@@ -43,11 +43,17 @@ nlohmann::json fix_vertices_op(const std::string& object, const std::vector<int>
                                bool have_fix_op);
 nlohmann::json incise_op(const std::string& object, const std::vector<engine::Vec3>& points,
                          bool snap);
+/// One side of a suture as the join op resolves it: the arc from `from` to `to` in the
+/// boundary direction. Ends at the same point without `via`: the whole loop there. With `via`
+/// (a point on the arc): the arc through it, which is how the two lips' copies of one point
+/// of a cut name the arc from one lip round to the other (a flap's rim, an aortotomy).
 struct ChainEnds {
   engine::Vec3 from, to;
+  std::optional<engine::Vec3> via;
+  [[nodiscard]] bool loop() const { return from == to && !via; }
 };
 /// `onto_b`: placement "onto_b" (side a drawn onto side b); otherwise the default (mean). A
-/// chain whose ends are the same point is recorded as the whole loop there ({"loop": p}).
+/// loop chain is recorded as {"loop": p}, the others as {"from", "to"[, "via"]}.
 nlohmann::json join_op(const std::string& object, const ChainEnds& a, const ChainEnds& b,
                        bool onto_b = false);
 nlohmann::json patch_op(const std::string& object, const std::string& shape,
@@ -65,6 +71,10 @@ nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Ve
 /// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);
+/// The flap relaxation, as the bundled subclavian flap session runs it: a static relaxation
+/// to s = 0.6, then damped dynamics (pace-setting density 1e-6 t/mm^3, dt 0.5 ms, 80 steps
+/// to s = 1 and 40 more) and a static settle. Two simulate ops, to run one after the other.
+std::vector<nlohmann::json> flap_relaxation_ops(bool collapse_barrier);
 /// Cross-section of `object` by a plane, reported under `name`.
 /// {"op": "measure", "centreline": "auto", "from", "to"}: the lumen profile along the automatic
 /// centreline between the points nearest `from` and `to` (e.g. two open ends' centres).

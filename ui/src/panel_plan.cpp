@@ -142,16 +142,22 @@ void suture_controls(GuiState& s) {
                                  "both sides chosen: Join (or Enter)"};
   ImGui::TextWrapped("Click the two ends of each side, in either order; each side takes the "
                      "shorter way along the boundary between them, and the surface's orientation "
-                     "decides which ends meet (grey lines). The same vertex twice takes its whole "
-                     "loop (an open end, for an end-to-end anastomosis). Next: %s.",
+                     "decides which ends meet (grey lines). The same point twice takes its whole "
+                     "loop (an open end, for an end-to-end anastomosis), or, below, from one lip "
+                     "of an incision round to the other (a flap). Next: %s.",
                      kSteps[std::min<std::size_t>(s.suture.clicks.size(), 4)]);
   if (const auto* obj = s.selected()) {
-    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way);
+    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
     for (const auto& line : p.lines) ImGui::TextWrapped("%s", line.c_str());
   }
   noted_checkbox(s.widgets, "Side A the long way round", &s.suture.long_way[0]);
   ImGui::SameLine();
   noted_checkbox(s.widgets, "Side B the long way round", &s.suture.long_way[1]);
+  noted_checkbox(s.widgets, "Same point twice: from lip round to lip (flap)", &s.suture.lip_to_lip);
+  tooltip_for_last_item(
+      "Subclavian flap: click the corner where the subclavian incision meets the aortotomy "
+      "twice for side A (the opened artery, lip to rim to lip) and twice for side B (the "
+      "aortotomy); 'long way round' swaps the two arcs.");
   noted_checkbox(s.widgets, "Draw side A onto side B (flap)", &s.suture.onto_b);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Side B stays; side A and the tissue behind it follow as rigidly as "
@@ -318,16 +324,16 @@ void commit_suture(GuiState& s) {
   }
   // Recorded in the boundary direction, so the session says exactly which arcs were joined.
   const auto& mesh = s.selected()->mesh;
-  const auto c = orient_suture_clicks(mesh, s.suture.clicks, s.suture.long_way);
+  const std::vector<ChainEnds> c = suture_sides(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
   std::string done = "Suture joined";
-  const SuturePreview p = preview_suture(mesh, s.suture.clicks, s.suture.long_way);
+  const SuturePreview p = preview_suture(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
   if (p.chains.size() == 2) {
     char buf[160];
     std::snprintf(buf, sizeof buf, " (side A %zu vertices, %.1f mm; side B %zu vertices, %.1f mm)",
                   p.chains[0].size(), p.lengths[0], p.chains[1].size(), p.lengths[1]);
     done += buf;
   }
-  if (s.perform(join_op(s.selected()->name, {c[0], c[1]}, {c[2], c[3]}, s.suture.onto_b), done)) {
+  if (s.perform(join_op(s.selected()->name, c[0], c[1], s.suture.onto_b), done)) {
     s.suture.clicks.clear();
     s.suture.long_way = {false, false};
   }

@@ -36,7 +36,21 @@ void simulate_section(GuiState& s) {
   // settings below only drive a run with nothing to relax, so only the settings that apply
   // are enabled.
   ImGui::BeginDisabled(no_relax.has_value());
+  if (noted_radio(s.widgets, "Static relaxation", !s.simulation.staged_dynamics))
+    s.simulation.staged_dynamics = false;
+  tooltip_for_last_item("Newton solves at increasing s: fast, and enough for patches, "
+                        "resections and most sutures.");
+  if (noted_radio(s.widgets, "Static, then damped dynamics (flap)", s.simulation.staged_dynamics)) {
+    s.simulation.staged_dynamics = true;
+    s.simulation.collapse_barrier = true;  // a flap gathers tissue (see the box below)
+  }
+  tooltip_for_last_item(
+      "For a flap turned down into an aortotomy (subclavian flap aortoplasty): static to "
+      "s = 0.6, then damped dynamics, whose inertia carries the gathered flap through its "
+      "buckling, then a static settle. Two runs, one after the other.");
+  ImGui::BeginDisabled(s.simulation.staged_dynamics);
   number_field("relax steps", &s.simulation.relax_steps, 1, 100);
+  ImGui::EndDisabled();
   ImGui::EndDisabled();
   tooltip_for_last_item(no_relax ? *no_relax
                                  : "Increments of s (rest shape from the joined to the split "
@@ -71,9 +85,13 @@ void simulate_section(GuiState& s) {
     std::string why;
     if (const auto refusal = s.element_check.refusal()) {
       s.error("Run refused. " + *refusal);
-    } else if (s.controller.start(simulate_op(s.simulation.steps, s.simulation.dt, relax,
-                                       s.simulation.collapse_barrier),
-                           why)) {
+    } else if (std::vector<nlohmann::json> ops =
+                   relax > 0 && s.simulation.staged_dynamics
+                       ? flap_relaxation_ops(s.simulation.collapse_barrier)
+                       : std::vector<nlohmann::json>{simulate_op(s.simulation.steps, s.simulation.dt,
+                                                                 relax, s.simulation.collapse_barrier)};
+               s.controller.start(ops.front(), why)) {
+      s.queued_runs.assign(ops.begin() + 1, ops.end());
       s.stages.simulation_started();
       s.tool = Tool::Navigate;
       cancel_draft(s);

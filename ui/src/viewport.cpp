@@ -155,7 +155,7 @@ Overlays viewport_overlays(const GuiState& s) {
       markers(s.incision.points, {0.85f, 0.05f, 0.05f}, 9.0f);
     }
     if (s.tool == Tool::Suture && obj) {
-      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way);
+      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
       const render::Color colors[2] = {{0.05f, 0.55f, 0.15f}, {0.55f, 0.1f, 0.7f}};
       for (std::size_t i = 0; i < p.chains.size(); ++i) line(p.chains[i], colors[i], 5.0f);
       for (const auto& ends : p.meeting_ends) line({ends[0], ends[1]}, {0.35f, 0.35f, 0.35f}, 2.5f);
