@@ -1,11 +1,13 @@
 // Execution of the simulation ops (material, constrain, loads, solve, simulate, probe, check).
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <set>
 #include <sstream>
 
 #include "replay_run.hpp"
 #include "sutura/app/simulation.hpp"
+#include "sutura/engine/sim/point_triangle_distance.hpp"
 #include "sutura/engine/sim/rigid_modes.hpp"
 #include "sutura/engine/sim/selection.hpp"
 #include "sutura/engine/sim/stability.hpp"
@@ -180,12 +182,45 @@ std::vector<SceneObject*> Run::objects_named(const std::vector<std::string>& nam
 
 json Run::execute(const MaterialOp& op) {
   remember();
-  engine::validate(op.material);
   SceneObject& obj = edit(op.object);
-  obj.sim.materials = {op.material};
-  obj.sim.face_material.assign(obj.mesh.num_faces(), 0);
-  json out = {{"object", op.object}};
-  if (const std::string w = engine::material_warning(op.material); !w.empty()) out["warning"] = w;
+  auto& materials = obj.sim.materials;
+  auto& face_material = obj.sim.face_material;
+  const std::size_t faces = obj.mesh.num_faces();
+  int index = 0;
+  engine::ShellMaterial m;
+  if (op.region == MaterialOp::Region::All) {
+    m = op.fields.applied_to(engine::ShellMaterial{});
+    engine::validate(m);
+    materials = {m};
+    face_material.assign(faces, 0);
+  } else {
+    if (op.region == MaterialOp::Region::At) {
+      // The face nearest the point, by the exact point-triangle distance (O(faces)).
+      double best = std::numeric_limits<double>::infinity();
+      std::size_t nearest = 0;
+      for (std::size_t f = 0; f < faces; ++f) {
+        const auto& t = obj.mesh.faces()[f];
+        const double d = engine::closest_point_on_triangle(op.at, obj.mesh.positions()[t[0]],
+                                                           obj.mesh.positions()[t[1]],
+                                                           obj.mesh.positions()[t[2]])
+                             .squared_distance;
+        if (d < best) best = d, nearest = f;
+      }
+      if (!(std::sqrt(best) <= op.max_distance))
+        throw std::runtime_error("the point 'at' is " + std::to_string(std::sqrt(best)) +
+                                    " mm from the nearest face of '" + op.object + "' (limit " +
+                                    std::to_string(op.max_distance) + " mm, max_distance)");
+      index = face_material[nearest];
+    }
+    m = op.fields.applied_to(materials[static_cast<std::size_t>(index)]);
+    engine::validate(m);
+    materials[static_cast<std::size_t>(index)] = m;
+  }
+  const auto count = std::count(face_material.begin(), face_material.end(), index);
+  json out = {{"object", op.object}, {"material", index}, {"faces", count},
+              {"values", {{"youngs_modulus", m.youngs_modulus}, {"poisson_ratio", m.poisson_ratio},
+                          {"thickness", m.thickness}}}};
+  if (const std::string w = engine::material_warning(m); !w.empty()) out["warning"] = w;
   return out;
 }
 

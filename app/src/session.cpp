@@ -170,4 +170,13 @@ Session load_session(const std::filesystem::path& file) {
   return parse_session(text, file);
 }
 
+engine::ShellMaterial MaterialFields::applied_to(engine::ShellMaterial base) const {
+  if (youngs_modulus) base.youngs_modulus = *youngs_modulus;
+  if (poisson_ratio) base.poisson_ratio = *poisson_ratio;
+  if (thickness) base.thickness = *thickness;
+  if (density) base.density = *density;
+  if (drilling_factor) base.drilling_factor = *drilling_factor;
+  return base;
+}
+
 }  // namespace sutura::app

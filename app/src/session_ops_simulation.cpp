@@ -69,14 +69,27 @@ VertexSelection parse_selection(Fields& f) {
 MaterialOp parse_material(Fields& f) {
   MaterialOp op;
   op.object = object_name(f);
-  auto& m = op.material;
-  m.youngs_modulus = f.optional_positive("youngs_modulus", m.youngs_modulus);
-  m.poisson_ratio = f.optional_number("poisson_ratio", m.poisson_ratio);
-  if (m.poisson_ratio < 0.0 || m.poisson_ratio >= 0.5)
-    f.fail("poisson_ratio", "must be in [0, 0.5)");
-  m.thickness = f.optional_positive("thickness", m.thickness);
-  m.density = f.optional_positive("density", m.density);
-  m.drilling_factor = f.optional_positive("drilling_factor", m.drilling_factor);
+  if (f.has("at")) {
+    if (f.has("region")) f.fail("at", "give either region or at, not both");
+    op.region = MaterialOp::Region::At;
+    op.at = vec(f.required_vec3("at"));
+    op.max_distance = f.optional_positive("max_distance", op.max_distance);
+  } else {
+    op.region = f.optional_choice("region", "all", {"all", "wall"}) == "wall" ? MaterialOp::Region::Wall
+                                                                             : MaterialOp::Region::All;
+  }
+  auto& m = op.fields;
+  const auto positive = [&](const char* key, std::optional<double>& out) {
+    if (f.has(key)) out = f.optional_positive(key, 1.0);
+  };
+  positive("youngs_modulus", m.youngs_modulus);
+  if (f.has("poisson_ratio")) {
+    m.poisson_ratio = f.optional_number("poisson_ratio", 0.0);
+    if (*m.poisson_ratio < 0.0 || *m.poisson_ratio >= 0.5) f.fail("poisson_ratio", "must be in [0, 0.5)");
+  }
+  positive("thickness", m.thickness);
+  positive("density", m.density);
+  positive("drilling_factor", m.drilling_factor);
   return op;
 }
 

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "../../ui/src/op_builders.hpp"
+#include "sutura/engine/generators.hpp"
 
 namespace fs = std::filesystem;
 using namespace sutura::ui;
@@ -37,4 +38,34 @@ TEST(OpBuilders, ALoadedMeshBesideTheRecordingIsNamedRelativeToIt) {
   EXPECT_EQ(prepared["prepare"]["smoothing"], 10);
   EXPECT_EQ(prepared["prepare"]["edge_length"], 0.5);
   fs::remove_all(dir);
+}
+
+// A region's material: the wall by name, a patch by a point on one of its faces (the centroid
+// of its lowest-numbered face, which the material op resolves back to that face).
+TEST(OpBuilders, AMaterialIsRecordedForItsRegionOnly) {
+  sutura::engine::StripParams sp;
+  sp.segments_length = 4;
+  sp.segments_width = 2;
+  const sutura::engine::SurfaceMesh m = sutura::engine::make_strip(sp);
+  std::vector<int> face_material(m.num_faces(), 0);
+  face_material[5] = face_material[9] = 1;
+  const nlohmann::json wall = material_op(m, face_material, "a", 0, 2.5, 0.45, 1.0);
+  EXPECT_EQ(wall["region"], "wall");
+  EXPECT_FALSE(wall.contains("at"));
+  EXPECT_EQ(wall["youngs_modulus"], 2.5);
+  const nlohmann::json patch = material_op(m, face_material, "a", 1, 30.0, 0.45, 0.3);
+  EXPECT_FALSE(patch.contains("region"));
+  const auto& t = m.faces()[5];
+  const sutura::engine::Vec3 c = (m.positions()[t[0]] + m.positions()[t[1]] + m.positions()[t[2]]) / 3.0;
+  EXPECT_EQ(patch["at"], point_json(c));
+  EXPECT_THROW(material_op(m, face_material, "a", 2, 1.0, 0.45, 1.0), std::invalid_argument);
+}
+
+// What a float field records: the decimal the surgeon typed, not the float's binary expansion.
+TEST(OpBuilders, FloatFieldsAreRecordedAsTyped) {
+  EXPECT_EQ(as_typed(0.45f), 0.45);
+  EXPECT_EQ(as_typed(2.5f), 2.5);
+  EXPECT_EQ(as_typed(1e-3f), 0.001);
+  EXPECT_EQ(as_typed(0.35f), 0.35);
+  EXPECT_EQ(float(as_typed(0.1f)), 0.1f);  // reads back as the same float
 }

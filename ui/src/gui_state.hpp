@@ -72,8 +72,15 @@ struct RemeshDraft {
   int iterations = 3;
 };
 
+/// The material of one region of the selected object: its first material (the wall) or a
+/// patch's. The values are the region's own, loaded from the object whenever the object,
+/// the region or the workspace changes, then edited until applied.
 struct MaterialDraft {
+  int region = 0;  ///< index into the object's materials: 0 the wall, others patches
   float youngs_modulus = 1.0f, poisson_ratio = 0.45f, thickness = 0.8f;
+  std::size_t loaded_object = ~std::size_t{0};
+  int loaded_region = -1;
+  std::uint64_t loaded_revision = ~std::uint64_t{0};
 };
 
 struct SimulationSettings {

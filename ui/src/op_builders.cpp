@@ -1,8 +1,19 @@
 #include "op_builders.hpp"
 
+#include <charconv>
+#include <cstdlib>
+#include <stdexcept>
+
 namespace sutura::ui {
 
 using nlohmann::json;
+
+double as_typed(float value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text - 1, value).ptr;
+  *end = '\0';
+  return std::strtod(text, nullptr);
+}
 
 json point_json(const engine::Vec3& p) { return json::array({p.x(), p.y(), p.z()}); }
 
@@ -34,10 +45,22 @@ json load_op(const std::string& object, const std::filesystem::path& file,
   return op;
 }
 
-json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
+json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_material,
+                 const std::string& object, int region, double youngs_modulus, double poisson_ratio,
                  double thickness) {
-  return {{"op", "material"}, {"object", object}, {"youngs_modulus", youngs_modulus},
-          {"poisson_ratio", poisson_ratio}, {"thickness", thickness}};
+  json op = {{"op", "material"}, {"object", object}, {"youngs_modulus", youngs_modulus},
+             {"poisson_ratio", poisson_ratio}, {"thickness", thickness}};
+  if (region == 0) {
+    op["region"] = "wall";
+    return op;
+  }
+  for (std::size_t f = 0; f < face_material.size() && f < mesh.num_faces(); ++f)
+    if (face_material[f] == region) {
+      const auto& t = mesh.faces()[f];
+      op["at"] = point_json((mesh.positions()[t[0]] + mesh.positions()[t[1]] + mesh.positions()[t[2]]) / 3.0);
+      return op;
+    }
+  throw std::invalid_argument("no face has material " + std::to_string(region));
 }
 
 json fix_loop_op(const std::string& object, int loop, bool have_fix_op) {

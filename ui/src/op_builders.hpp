@@ -16,6 +16,9 @@
 namespace sutura::ui {
 
 nlohmann::json point_json(const engine::Vec3& p);
+/// The value of a float field as the shortest decimal that reads back as that float (0.45f
+/// gives 0.45, not 0.449999988079071), so that a recording says what the surgeon typed.
+double as_typed(float value);
 
 /// {"op": "generate", "object", "shape", ...extra}; extra holds shape parameters.
 nlohmann::json generate_op(const std::string& object, const std::string& shape,
@@ -31,8 +34,13 @@ std::filesystem::path path_from(const std::filesystem::path& file, const std::fi
 nlohmann::json load_op(const std::string& object, const std::filesystem::path& file,
                        const std::filesystem::path& recording, bool prepare = false,
                        double prepare_edge_length = 0.0);
-nlohmann::json material_op(const std::string& object, double youngs_modulus, double poisson_ratio,
-                           double thickness);
+/// The material of one region of `object` (MaterialOp): region 0, the wall, as {"region":
+/// "wall"}; a patch's (region > 0) as {"at": p}, p the centroid of the region's lowest-numbered
+/// face now. Other regions keep their materials. Throws std::invalid_argument for a region no
+/// face has.
+nlohmann::json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_material,
+                           const std::string& object, int region, double youngs_modulus,
+                           double poisson_ratio, double thickness);
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
 /// equivalent `constrain` op with a boundary selection.
 nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);

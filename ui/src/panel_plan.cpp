@@ -181,18 +181,18 @@ void patch_controls(GuiState& s) {
     tooltip_for_last_item(kShapeUse[k]);
   }
   number_field("width [mm]", &s.patch.width, 1.0f, 15.0f, 0.5f, "%.1f");
-  number_field("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 20.0f, 0.1f);
+  number_field("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 200.0f, 0.1f);
   number_field("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f, 0.05f);
   ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
                      s.patch.ends.size());
   const std::optional<std::string> why =
       s.patch.ends.size() < 2 ? std::optional<std::string>("Click both incision ends first.") : std::nullopt;
   if (gated_button(s.widgets, "Add patch", why) && s.selected()) {
-    const json material = {{"youngs_modulus", s.patch.youngs_modulus},
-                           {"poisson_ratio", s.patch.poisson_ratio},
-                           {"thickness", s.patch.thickness}};
+    const json material = {{"youngs_modulus", as_typed(s.patch.youngs_modulus)},
+                           {"poisson_ratio", as_typed(s.patch.poisson_ratio)},
+                           {"thickness", as_typed(s.patch.thickness)}};
     if (s.perform(patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0],
-                           s.patch.ends[1], s.patch.width, material)))
+                           s.patch.ends[1], as_typed(s.patch.width), material)))
       s.patch.ends.clear();
   }
 }
@@ -252,14 +252,55 @@ void load_controls(GuiState& s) {
               "'" + s.selected()->name + "' unloaded: in equilibrium under its pressure where it was imaged");
 }
 
+// One region per material of the object: the wall (its first material) and each patch. The
+// fields show the chosen region's own values; applying changes that region only.
 void material_controls(GuiState& s) {
-  number_field("E [MPa]", &s.material.youngs_modulus, 0.05f, 20.0f, 0.05f);
-  number_field("Poisson ratio", &s.material.poisson_ratio, 0.0f, 0.49f, 0.01f);
-  number_field("wall [mm]", &s.material.thickness, 0.1f, 3.0f, 0.05f);
-  if (gated_button(s.widgets, "Apply material", s.why_not(Action::EditMaterial)) && s.selected())
-    s.perform(material_op(s.selected()->name, s.material.youngs_modulus, s.material.poisson_ratio,
-                          s.material.thickness),
-              "Material set on '" + s.selected()->name + "'");
+  const app::SceneObject* obj = s.controller.busy() ? nullptr : s.selected();
+  if (!obj) {
+    ImGui::TextDisabled("Select an object (not while a simulation runs).");
+    return;
+  }
+  MaterialDraft& d = s.material;
+  const auto& materials = obj->sim.materials;
+  const auto& face_material = obj->sim.face_material;
+  if (d.region < 0 || d.region >= int(materials.size())) d.region = 0;
+  if (d.loaded_object != s.object || d.loaded_region != d.region ||
+      d.loaded_revision != s.controller.revision()) {
+    const engine::ShellMaterial& m = materials[std::size_t(d.region)];
+    d.youngs_modulus = float(m.youngs_modulus);
+    d.poisson_ratio = float(m.poisson_ratio);
+    d.thickness = float(m.thickness);
+    d.loaded_object = s.object, d.loaded_region = d.region, d.loaded_revision = s.controller.revision();
+  }
+  for (std::size_t k = 0; k < materials.size(); ++k) {
+    const auto faces = std::count(face_material.begin(), face_material.end(), int(k));
+    if (k > 0 && faces == 0) continue;  // a patch undone or cut away
+    if (noted_radio(s.widgets, k == 0 ? std::string("Wall") : "Patch " + std::to_string(k), d.region == int(k)))
+      d.region = int(k);
+    ImGui::SameLine();
+    ImGui::TextDisabled("E %.3g MPa, nu %.2f, %.2f mm, %ld faces", materials[k].youngs_modulus,
+                        materials[k].poisson_ratio, materials[k].thickness, long(faces));
+  }
+  number_field("E [MPa]", &d.youngs_modulus, 0.05f, 200.0f, 0.05f);
+  s.widgets.note("E [MPa]");
+  number_field("Poisson ratio", &d.poisson_ratio, 0.0f, 0.49f, 0.01f);
+  s.widgets.note("Poisson ratio");
+  number_field("thickness [mm]", &d.thickness, 0.05f, 3.0f, 0.05f);
+  s.widgets.note("thickness [mm]");
+  const std::string target = d.region == 0 ? "the wall" : "patch " + std::to_string(d.region);
+  if (gated_button(s.widgets, d.region == 0 ? "Apply to the wall" : "Apply to this patch",
+                   s.why_not(Action::EditMaterial),
+                   d.region == 0 ? "The vessel wall's material; patches keep theirs."
+                                 : "This patch's material; the wall and other patches keep theirs.")) {
+    s.perform(material_op(obj->mesh, face_material, obj->name, d.region, as_typed(d.youngs_modulus),
+                          as_typed(d.poisson_ratio), as_typed(d.thickness)),
+              [&] {
+                char values[96];
+                std::snprintf(values, sizeof values, ": E %.3g MPa, nu %.2f, %.2f mm", d.youngs_modulus,
+                              d.poisson_ratio, d.thickness);
+                return "Material of " + target + " of '" + obj->name + "' set" + values;
+              }());
+  }
 }
 
 }  // namespace
@@ -294,7 +335,7 @@ void plan_section(GuiState& s) {
     case Tool::Resect: resect_controls(s); break;
   }
   ImGui::Separator();
-  if (noted_tree_node(s.widgets, "Material of the selected object")) {
+  if (noted_tree_node(s.widgets, "Materials of the selected object")) {
     material_controls(s);
     ImGui::TreePop();
   }

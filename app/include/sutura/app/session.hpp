@@ -133,9 +133,24 @@ struct ReportOp {
 };
 
 /// Sets the material of every face of an object.
+/// The material fields a session line gives; the others come from `base` (applied_to).
+struct MaterialFields {
+  std::optional<double> youngs_modulus, poisson_ratio, thickness, density, drilling_factor;
+  [[nodiscard]] engine::ShellMaterial applied_to(engine::ShellMaterial base) const;
+};
+
 struct MaterialOp {
   std::string object;
-  engine::ShellMaterial material;
+  /// Which faces get the material. All: every face, one material for the whole object (the
+  /// fields not given take engine::ShellMaterial's defaults). Wall: the faces of the object's
+  /// first material (the vessel wall; patches keep theirs). At: every face of the material of
+  /// the face nearest `at` (within `max_distance` mm; a patch, or the wall). With Wall and At,
+  /// the fields not given keep that material's values.
+  enum class Region { All, Wall, At };
+  Region region = Region::All;
+  engine::Vec3 at = engine::Vec3::Zero();
+  double max_distance = 1.0;
+  MaterialFields fields;
 };
 
 /// Which vertices an op acts on: one of the engine selections, or boundary loops
