@@ -1,109 +1,24 @@
 #include "snapshot.hpp"
 
-#include "sutura/app/plan_drawing.hpp"
-
-#include "sutura/engine/measure/vertex_fields.hpp"
-#include "sutura/engine/surgery/relaxation.hpp"
-
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
 
-#include "sutura/engine/shell/shell_model.hpp"
+#include "sutura/app/object_view.hpp"
+#include "sutura/engine/surgery/relaxation.hpp"
 
 namespace sutura::app {
 
 namespace {
 
-
-// Arrays for one object in one state; the renderer's spans point into these.
-struct ObjectArrays {
-  std::vector<float> positions;
-  PlanDrawing plan;  ///< faces (wall and patches) and plan lines
-  std::vector<float> scalars;
-  std::vector<std::vector<render::Point3>> loops;
-  render::Color color{};
-};
-
-// Per-element measures of Model 1 (the default shell model) averaged to the vertices with
-// face-area weights, for the current state with its simulated nodal rotations. The
-// before-state's are those `unload` kept (an imaged vessel under its loads), or zero
-// everywhere for a stress-free reference (its topology may differ from today's after
-// incisions and sutures, so they are not recomputed).
-std::vector<float> element_field(Field field, const SceneObject& obj,
-                                 const engine::SurfaceMesh& state) {
-  if (&state != &obj.mesh) {
-    const engine::VertexMeasures& b = obj.before_measures;
-    const std::vector<double>& v = field == Field::MembraneStrain ? b.membrane_strain
-                                   : field == Field::Bending      ? b.bending_curvature
-                                                                  : b.energy_density;
-    if (v.size() != state.num_vertices()) return std::vector<float>(state.num_vertices(), 0.0f);
-    return std::vector<float>(v.begin(), v.end());
-  }
-  const engine::ShellState& s = obj.sim.state;
-  const auto model = engine::make_corotational_shell();
-  const engine::ShellProblem problem{&state.faces(), &obj.sim.rest, &obj.sim.materials,
-                                     &obj.sim.face_material, state.num_vertices()};
-  const engine::ElementMeasures m = model->measures(problem, s);
-  const std::vector<double>& per_face = field == Field::MembraneStrain ? m.membrane_strain
-                                        : field == Field::Bending      ? m.bending_curvature
-                                                                       : m.energy_density;
-  const std::vector<double> per_vertex = engine::face_to_vertex(state, per_face);
-  return std::vector<float>(per_vertex.begin(), per_vertex.end());
-}
-
-std::vector<float> field_values(Field field, const SceneObject& obj,
-                                const engine::SurfaceMesh& state) {
-  if (field == Field::MembraneStrain || field == Field::Bending || field == Field::EnergyDensity)
-    return element_field(field, obj, state);
-  std::vector<float> v(state.num_vertices());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const engine::Vec3& p = state.positions()[i];
-    switch (field) {
-      case Field::X: v[i] = static_cast<float>(p.x()); break;
-      case Field::Y: v[i] = static_cast<float>(p.y()); break;
-      case Field::Z: v[i] = static_cast<float>(p.z()); break;
-      case Field::Displacement: {
-        // From where the material point was before the operation (carried across edits);
-        // the before-state has not moved.
-        const bool current = &state == &obj.mesh && obj.sim.reference.size() == v.size();
-        v[i] = current ? static_cast<float>((p - obj.sim.reference[i]).norm()) : 0.0f;
-        break;
-      }
-      default: break;
-    }
-  }
-  return v;
-}
-
-ObjectArrays arrays_for(const SnapshotOp& op, const SceneObject& obj,
-                        const engine::SurfaceMesh& state, render::Color color) {
-  ObjectArrays a;
-  a.positions = state.flat_positions();
-  a.plan = plan_drawing(obj, state, op.marks);
-  if (op.field != Field::None) a.scalars = field_values(op.field, obj, state);
-  if (op.boundaries) {
-    for (const auto& loop : state.boundary_loops()) {
-      std::vector<render::Point3> pts;
-      pts.reserve(loop.size());
-      for (auto v : loop) {
-        const auto& p = state.position(v);
-        pts.push_back({float(p.x()), float(p.y()), float(p.z())});
-      }
-      a.loops.push_back(std::move(pts));
-    }
-  }
-  a.color = color;
-  return a;
-}
-
 // The rest shape the solver sees now (y0 part-way to x0 during a relaxation), one separate
 // triangle per element: split edges stay visible (paper, Fig. 2.4).
-ObjectArrays rest_arrays(const SnapshotOp& op, const SceneObject& obj, render::Color color) {
+ObjectView rest_view(const SceneObject& obj, render::Color color) {
   const engine::RestState rest =
       obj.sim.relax_from ? engine::rest_at(*obj.sim.relax_from, obj.sim.rest, obj.sim.relax_s)
                          : obj.sim.rest;
-  ObjectArrays a;
+  ObjectView a;
+  a.name = obj.name;
   a.positions.reserve(9 * rest.elements.size());
   for (const auto& e : rest.elements)
     for (const auto& x : e.X)
@@ -113,39 +28,6 @@ ObjectArrays rest_arrays(const SnapshotOp& op, const SceneObject& obj, render::C
     a.plan.wall_triangles[i] = static_cast<std::uint32_t>(i);
   a.color = color;  // plain: the rest shape carries no field
   return a;
-}
-
-render::Scene scene_for(const SnapshotOp& op, const std::vector<ObjectArrays>& arrays,
-                        const std::optional<render::ColorMap>& cmap) {
-  render::Scene scene;
-  for (const auto& a : arrays) {
-    add_plan_surfaces(scene, a.positions, a.scalars, a.plan, a.color, op.wireframe);
-    for (const auto& loop : a.loops) {
-      render::PolylineItem line;
-      line.points = loop;
-      line.closed = true;
-      line.color = {0.15f, 0.15f, 0.15f};
-      line.width_px = 2.5f;
-      scene.polylines.push_back(std::move(line));
-    }
-    add_plan_lines(scene, a.plan);
-  }
-  scene.color_map = cmap;
-  return scene;
-}
-
-std::string field_label(Field f) {
-  switch (f) {
-    case Field::Displacement: return "displacement [mm]";
-    case Field::X: return "x [mm]";
-    case Field::Y: return "y [mm]";
-    case Field::Z: return "z [mm]";
-    case Field::MembraneStrain: return "max principal membrane strain [-]";
-    case Field::Bending: return "curvature change [1/mm]";
-    case Field::EnergyDensity: return "strain energy density [N/mm]";
-    case Field::None: break;
-  }
-  return {};
 }
 
 render::Point3 to_point(const Vec3f& v) { return {float(v[0]), float(v[1]), float(v[2])}; }
@@ -178,16 +60,17 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
   }
   if (selected.empty()) throw std::runtime_error("nothing to draw: the session has no objects yet");
 
-  std::vector<ObjectArrays> after, before;
+  const ViewContent content{op.marks, op.boundaries, op.field};
+  std::vector<ObjectView> after, before;
   for (std::size_t i = 0; i < selected.size(); ++i) {
     // Colour by position in the workspace so an object keeps its colour across snapshots.
     std::size_t index = 0;
     while (&all[index] != selected[i]) ++index;
     const render::Color color = render::object_color(index);
-    after.push_back(arrays_for(op, *selected[i], selected[i]->mesh, color));
+    after.push_back(object_view(*selected[i], selected[i]->mesh, color, content));
     if (op.side_by_side)
-      before.push_back(op.compare_rest ? rest_arrays(op, *selected[i], color)
-                                       : arrays_for(op, *selected[i], selected[i]->before, color));
+      before.push_back(op.compare_rest ? rest_view(*selected[i], color)
+                                       : object_view(*selected[i], selected[i]->before, color, content));
   }
 
   std::optional<render::ColorMap> cmap;
@@ -223,8 +106,8 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
     cmap = c;
   }
 
-  const render::Scene after_scene = scene_for(op, after, cmap);
-  const render::Scene before_scene = scene_for(op, before, cmap);
+  const render::Scene after_scene = scene_of(after, cmap, op.wireframe);
+  const render::Scene before_scene = scene_of(before, cmap, op.wireframe);
 
   // Both views share one camera so before and after are directly comparable; each is drawn
   // left of the legend's column (only the right one draws the legend).

@@ -48,7 +48,7 @@ SessionRecorder record_new_session(const fs::path& out_dir, const Start& start) 
   }
 }
 
-std::array<render::Point3, 2> bounds_of(const std::vector<ObjectArrays>& objects) {
+std::array<render::Point3, 2> bounds_of(const std::vector<app::ObjectView>& objects) {
   render::Scene scene;
   for (const auto& a : objects) app::add_plan_surfaces(scene, a.positions, {}, a.plan, a.color, false);
   return render::scene_bounds(scene);
@@ -289,6 +289,7 @@ int run_gui(const GuiOptions& options) {
     try {
       menu_bar(s);
       quit_dialog(s);
+      s.section_controls_open = false;  // set again by the Inspect panel while they show
       workflow_window(s);
       message_window(s);
       const float view_width = std::max(1.0f, float(width) - s.view_left);

@@ -136,6 +136,9 @@ struct GuiState {
   bool wireframe = false;
   ViewField field = ViewField::None;
   std::optional<engine::Vec3> plane_origin;
+  /// The Cross-section controls are open: only then is the plane drawn over the view (a tool,
+  /// not part of the plan: snapshots do not show it).
+  bool section_controls_open = false;
   int plane_axis = 2;  ///< 0 x, 1 y, 2 z: normal of the cross-section plane
   nlohmann::json last_measure;
   /// Lumen profile: the open ends (boundary loops of the selected object, in loop order) it

@@ -239,7 +239,8 @@ void inspect_section(GuiState& s) {
   if (why_map) tooltip_for_last_item(*why_map);
   if (s.view.field_problem()) ImGui::TextWrapped("%s", s.view.field_problem()->c_str());
 
-  if (noted_tree_node(s.widgets, "Cross-section")) {
+  s.section_controls_open = noted_tree_node(s.widgets, "Cross-section");
+  if (s.section_controls_open) {
     cross_section_controls(s);
     ImGui::TreePop();
   }

@@ -1,13 +1,14 @@
 #pragma once
-// What the 3-D view draws: per-object render arrays (current and before state, optional
-// colour field), cached per workspace revision, with live positions patched in while a
-// simulation runs; and the render::Scene assembled from them plus the GUI's overlays.
+// What the 3-D view draws: the objects' views (app/object_view.hpp, the snapshots' path:
+// current and before state, optional colour field), cached per workspace revision, with live
+// positions patched in while a simulation runs; and the scene built from them plus the GUI's
+// overlays.
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "sutura/app/plan_drawing.hpp"
+#include "sutura/app/object_view.hpp"
 #include "sutura/app/workspace.hpp"
 #include "sutura/render/scene.hpp"
 #include "sutura/ui/session_controller.hpp"
@@ -17,17 +18,9 @@ namespace sutura::ui {
 enum class ViewField { None, Displacement, MembraneStrain, Bending };
 /// The session's field name ("none", "displacement", "membrane_strain", "bending").
 const char* session_field_name(ViewField f);
-const char* field_label(ViewField f);
 
-struct ObjectArrays {
-  std::string name;
-  std::vector<float> positions;
-  app::PlanDrawing plan;       ///< faces (wall and patches), incisions and sutures
-  std::vector<float> scalars;  ///< empty without a field
-  std::vector<std::vector<render::Point3>> loops;
-  std::vector<render::Point3> fixed;  ///< vertices with any fixed DOF
-  render::Color color{};
-};
+/// The session's field of a view field.
+app::Field session_field(ViewField f);
 
 class ViewCache {
  public:
@@ -37,14 +30,14 @@ class ViewCache {
   /// Overwrites the positions of the objects in `live` (a running simulation).
   void apply_live(const LiveProgress& live);
 
-  [[nodiscard]] const std::vector<ObjectArrays>& current() const { return current_; }
-  [[nodiscard]] const std::vector<ObjectArrays>& before() const { return before_; }
+  [[nodiscard]] const std::vector<app::ObjectView>& current() const { return current_; }
+  [[nodiscard]] const std::vector<app::ObjectView>& before() const { return before_; }
   [[nodiscard]] const std::optional<std::string>& field_problem() const { return problem_; }
   /// Colour map for the current field over both states, or nullopt without a field.
   [[nodiscard]] std::optional<render::ColorMap> color_map() const;
 
  private:
-  std::vector<ObjectArrays> current_, before_;
+  std::vector<app::ObjectView> current_, before_;
   std::optional<std::string> problem_;
   std::uint64_t revision_ = ~std::uint64_t{0};
   std::uint64_t live_revision_ = 0;
@@ -58,7 +51,7 @@ struct Overlays {
 };
 
 /// Surfaces (wireframe optional), boundary loops, fixed vertices, then `overlays`.
-render::Scene make_scene(const std::vector<ObjectArrays>& objects, const Overlays& overlays,
+render::Scene make_scene(const std::vector<app::ObjectView>& objects, const Overlays& overlays,
                          const std::optional<render::ColorMap>& color_map, bool wireframe);
 
 }  // namespace sutura::ui

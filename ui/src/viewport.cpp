@@ -202,7 +202,7 @@ Overlays viewport_overlays(const GuiState& s) {
     for (const auto& t : s.element_check.warned) markers(t.where, {1.0f, 0.55f, 0.0f}, 7.0f);
   }
   if (s.hover) markers({s.hover->hit.point}, {0.05f, 0.05f, 0.05f}, 8.0f);
-  if (s.stages.stage() == Stage::Inspect && s.plane_origin && obj) {
+  if (s.stages.stage() == Stage::Inspect && s.section_controls_open && s.plane_origin && obj) {
     // The cross-section plane as a square outline around its origin.
     const double r = 0.6 * obj->mesh.bounds().diagonal().norm() / 2.0;
     engine::Vec3 n = engine::Vec3::Zero();
