@@ -2,10 +2,12 @@
 # GUI test: runs the real `sutura gui` window under its own Xvfb server and drives it with a
 # scripted-input file (events go through the same input queue as real ones), then checks
 # that the recorded session replays headlessly to the same geometry (position hashes in the
-# GUI's report.json and the replay's). Leaves the window screenshots in OUT.
-#   run_gui_test.sh SUTURA_EXE SCRIPT OUT
+# GUI's report.json and the replay's), and that the snapshot the script saved shows what the
+# window showed (COMPARE_VIEW: tests/gui/compare_view.cpp, on the window.png taken after it).
+# Leaves the window screenshots in OUT.
+#   run_gui_test.sh SUTURA_EXE SCRIPT OUT COMPARE_VIEW
 set -euo pipefail
-exe=$1 script=$2 out=$3
+exe=$1 script=$2 out=$3 compare_view=$4
 rm -rf "$out"
 mkdir -p "$out"
 
@@ -33,6 +35,10 @@ echo "replay: $replay_hashes"
 }
 cmp "$out/gui_snapshot.png" "$out/replayed/gui_snapshot.png" || {
   echo "gui test: the replayed snapshot differs from the GUI's" >&2
+  exit 1
+}
+"$compare_view" "$out/window.png" "$out/gui_snapshot.png" || {
+  echo "gui test: the snapshot differs from the window's view" >&2
   exit 1
 }
 if [ -e "$out/meshes/result.obj" ]; then
