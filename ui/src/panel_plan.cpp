@@ -182,7 +182,9 @@ void patch_controls(GuiState& s) {
   }
   number_field("width [mm]", &s.patch.width, 1.0f, 15.0f, 0.5f, "%.1f");
   number_field("patch E [MPa]", &s.patch.youngs_modulus, 0.1f, 200.0f, 0.1f);
+  s.widgets.note("patch E [MPa]");
   number_field("patch thickness [mm]", &s.patch.thickness, 0.1f, 2.0f, 0.05f);
+  s.widgets.note("patch thickness [mm]");
   ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
                      s.patch.ends.size());
   const std::optional<std::string> why =
@@ -191,8 +193,12 @@ void patch_controls(GuiState& s) {
     const json material = {{"youngs_modulus", as_typed(s.patch.youngs_modulus)},
                            {"poisson_ratio", as_typed(s.patch.poisson_ratio)},
                            {"thickness", as_typed(s.patch.thickness)}};
+    char done[160];
+    std::snprintf(done, sizeof done, "Patch added: %s, %.1f mm wide, E %.3g MPa, %.2f mm thick",
+                  kShapes[s.patch.shape], s.patch.width, s.patch.youngs_modulus, s.patch.thickness);
     if (s.perform(patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0],
-                           s.patch.ends[1], as_typed(s.patch.width), material)))
+                           s.patch.ends[1], as_typed(s.patch.width), material),
+                  done))
       s.patch.ends.clear();
   }
 }
