@@ -1,5 +1,9 @@
 // Execution of the scene ops (generate, load, snapshot, export, report) and the report.
 #include "replay_run.hpp"
+
+#include <cmath>
+#include <fstream>
+
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/report.hpp"
@@ -28,6 +32,52 @@ fs::path Run::output(const fs::path& relative) {
 }
 
 namespace {
+
+// The ends listed under `stem` in a landmarks file, `sutura generate`'s format:
+// {"<stem>": {"ends": [{"name", "centre", "normal", "radius"}, ...]}, ...}. Every problem is
+// an error naming the file and the field.
+std::vector<engine::VesselEnd> read_named_ends(const std::filesystem::path& file, const std::string& stem) {
+  const std::string where = "landmarks file " + file.string();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec) throw std::runtime_error("cannot read " + where + ": " + ec.message());
+  if (size > (std::uintmax_t{16} << 20)) throw std::runtime_error(where + " is larger than 16 MiB");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + where);
+  const json j = json::parse(in, nullptr, false);
+  if (j.is_discarded()) throw std::runtime_error(where + " is not valid JSON");
+  if (!j.is_object() || !j.contains(stem))
+    throw std::runtime_error(where + " has no entry '" + stem + "' (named after the mesh file)");
+  const json* ends = j[stem].is_object() && j[stem].contains("ends") ? &j[stem]["ends"] : nullptr;
+  if (!ends || !ends->is_array()) throw std::runtime_error(where + ": '" + stem + ".ends' must be an array");
+  if (ends->size() > 1000) throw std::runtime_error(where + ": '" + stem + ".ends' lists more than 1000 ends");
+  std::vector<engine::VesselEnd> out;
+  for (std::size_t k = 0; k < ends->size(); ++k) {
+    const json& e = (*ends)[k];
+    const std::string field = stem + ".ends[" + std::to_string(k) + "]";
+    const auto vec3 = [&](const char* key) {
+      const json* v = e.is_object() && e.contains(key) ? &e[key] : nullptr;
+      if (!v || !v->is_array() || v->size() != 3 || !(*v)[0].is_number() || !(*v)[1].is_number() ||
+          !(*v)[2].is_number())
+        throw std::runtime_error(where + ": '" + field + "." + key + "' must be 3 numbers");
+      const engine::Vec3 p((*v)[0].get<double>(), (*v)[1].get<double>(), (*v)[2].get<double>());
+      if (!p.allFinite()) throw std::runtime_error(where + ": '" + field + "." + key + "' must be finite");
+      return p;
+    };
+    engine::VesselEnd end;
+    if (!e.is_object() || !e.contains("name") || !e["name"].is_string() || e["name"].get<std::string>().empty())
+      throw std::runtime_error(where + ": '" + field + ".name' must be a non-empty string");
+    end.name = e["name"].get<std::string>();
+    end.centre = vec3("centre");
+    end.normal = vec3("normal");
+    if (!e.contains("radius") || !e["radius"].is_number() || !(e["radius"].get<double>() > 0.0) ||
+        !std::isfinite(e["radius"].get<double>()))
+      throw std::runtime_error(where + ": '" + field + ".radius' must be a number > 0");
+    end.radius = e["radius"].get<double>();
+    out.push_back(std::move(end));
+  }
+  return out;
+}
 [[noreturn]] void no_object(const Workspace& w, const std::string& name) {
   throw std::runtime_error("no object named '" + name + "' (objects: " + w.names() + ")");
 }
@@ -160,6 +210,7 @@ json Run::execute(const LoadOp& op) {
                                                                " in all (--max-faces-in-all raises it)"));
   }
   json prepared = nullptr;
+  std::vector<engine::VesselEnd> prepared_ends;
   if (op.prepare) {
     if (room == 0)
       throw std::runtime_error("prepare: no faces left of the limit of " + std::to_string(l.faces_in_all) +
@@ -169,6 +220,7 @@ json Run::execute(const LoadOp& op) {
     p.smoothing_iterations = op.prepare->smoothing;
     p.max_faces = std::max<std::size_t>(1, std::min(l.faces_per_object, room));
     engine::PrepareResult r = engine::prepare_vessel(mesh, p);
+    for (const auto& e : r.ends) prepared_ends.push_back(e.end);
     json ends = json::array();
     for (const auto& e : r.ends)
       ends.push_back({{"name", e.end.name},
@@ -183,9 +235,18 @@ json Run::execute(const LoadOp& op) {
                 {"hausdorff_to_input_mm", r.to_input.symmetric}};
     mesh = std::move(r.vessel);
   }
-  const auto& obj = workspace.add(op.object, std::move(mesh));
+  std::vector<engine::VesselEnd> ends = std::move(prepared_ends);
+  if (op.landmarks) {
+    inputs.push_back(*op.landmarks);
+    ends = read_named_ends(*op.landmarks, op.file.stem().string());
+  }
+  SceneObject& obj = workspace.add(op.object, std::move(mesh));
+  obj.ends = std::move(ends);
+  json names = json::array();
+  for (const auto& loop : obj.mesh.boundary_loops()) names.push_back(end_name(obj, loop));
   json j = {{"object", op.object}, {"file", op.file.generic_string()},
             {"vertices", obj.mesh.num_vertices()}, {"faces", obj.mesh.num_faces()}};
+  if (!obj.ends.empty()) j["end_names"] = names;
   if (op.prepare) j["prepared"] = prepared;
   return j;
 }

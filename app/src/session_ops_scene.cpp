@@ -70,6 +70,11 @@ LoadOp parse_load(Fields& f, const std::filesystem::path& session_file) {
     p->finish();
     op.prepare = spec;
   }
+  if (f.has("landmarks")) {
+    if (op.prepare) f.fail("landmarks", "a prepared mesh names its ends itself (end_1, end_2, ...)");
+    std::filesystem::path l(f.required_string("landmarks"));
+    op.landmarks = l.is_absolute() ? l : session_file.parent_path() / l;
+  }
   return op;
 }
 

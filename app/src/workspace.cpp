@@ -1,5 +1,6 @@
 #include "sutura/app/workspace.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sutura::app {
@@ -35,6 +36,20 @@ std::string Workspace::names() const {
   std::string s;
   for (const auto& o : objects_) s += (s.empty() ? "" : ", ") + o->name;
   return s.empty() ? "(none)" : s;
+}
+
+std::string end_name(const SceneObject& obj, const std::vector<engine::VertexId>& loop) {
+  if (loop.empty() || obj.ends.empty()) return {};
+  engine::Vec3 c = engine::Vec3::Zero();
+  for (const auto v : loop) c += obj.mesh.position(v);
+  c /= static_cast<double>(loop.size());
+  const engine::VesselEnd* best = nullptr;
+  double best_distance = 0.0;
+  for (const auto& e : obj.ends) {
+    const double d = (e.centre - c).norm();
+    if (d <= std::max(0.5, 0.5 * e.radius) && (!best || d < best_distance)) best = &e, best_distance = d;
+  }
+  return best ? best->name : std::string();
 }
 
 }  // namespace sutura::app

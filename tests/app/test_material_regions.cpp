@@ -5,6 +5,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "sutura/app/replay.hpp"
@@ -45,12 +46,10 @@ std::pair<int, sutura::engine::Vec3> patch_face(const SceneObject& o) {
       return {o.sim.face_material[f], (x[t[0]] + x[t[1]] + x[t[2]]) / 3.0};
     }
   ADD_FAILURE() << "no patch face";
-  return {0, {}};
+  return {0, sutura::engine::Vec3::Zero()};
 }
 
-std::string point(const sutura::engine::Vec3& p) {
-  return "[" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z()) + "]";
-}
+std::string point(const sutura::engine::Vec3& p) { return nlohmann::json::array({p.x(), p.y(), p.z()}).dump(); }
 
 }  // namespace
 

@@ -113,6 +113,14 @@ void refresh_view(GuiState& s, float aspect) {
     for (const auto& o : s.controller.workspace().objects()) meshes.push_back(&o.mesh);
     s.picker.rebuild(meshes);
     s.picker_revision = s.controller.revision();
+    s.end_labels.clear();
+    for (const auto& o : s.controller.workspace().objects())
+      for (const auto& loop : o.mesh.boundary_loops())
+        if (std::string name = app::end_name(o, loop); !name.empty()) {
+          engine::Vec3 c = engine::Vec3::Zero();
+          for (const auto v : loop) c += o.mesh.position(v);
+          s.end_labels.emplace_back(c / double(loop.size()), std::move(name));
+        }
   }
   if (!s.controller.busy() && s.element_check_revision != s.controller.revision()) {
     s.element_check = check_elements(s.controller.workspace());
@@ -155,6 +163,32 @@ void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int h
   renderer.draw(make_scene(before ? s.view.before() : s.view.current(), before ? Overlays{} : overlays,
                            cmap, s.wireframe),
                 camera, width, height, options);
+}
+
+// The names of the open ends (root, descending, innominate...) beside them while planning.
+void end_labels(const GuiState& s) {
+  if (s.stages.stage() != Stage::Plan || s.controller.busy()) return;
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  std::vector<std::array<float, 4>> placed;  // x0, y0, x1, y1 of the labels drawn so far
+  for (const auto& [where, name] : s.end_labels) {
+    std::array<float, 2> px{};
+    if (!s.camera.project(where, s.scene_width, s.view_height, px)) continue;
+    ImVec2 at(s.view_left + px[0] + 10.0f, px[1] - 8.0f);
+    const ImVec2 size = ImGui::CalcTextSize(name.c_str());
+    // Below any label it would cover (ends close together on the screen).
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& r : placed)
+        if (at.x < r[2] && at.x + size.x > r[0] && at.y < r[3] && at.y + size.y > r[1]) {
+          at.y = r[3] + 2.0f;
+          moved = true;
+        }
+    }
+    placed.push_back({at.x - 3.0f, at.y - 1.0f, at.x + size.x + 3.0f, at.y + size.y + 1.0f});
+    draw->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 1.0f), ImVec2(at.x + size.x + 3.0f, at.y + size.y + 1.0f),
+                        IM_COL32(255, 255, 255, 200), 3.0f);
+    draw->AddText(at, IM_COL32(60, 40, 20, 255), name.c_str());
+  }
 }
 
 // "Before" / "After" over the views of the Inspect stage.
@@ -311,6 +345,7 @@ int run_gui(const GuiOptions& options) {
       refresh_view(s, scene_width / float(height));
       viewport_input(s, std::max(1.0f, scene_width), float(height));
       view_captions(s, view_width);
+      end_labels(s);
     } catch (const std::exception& e) {
       s.error(e.what());
     }

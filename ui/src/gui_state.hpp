@@ -135,6 +135,9 @@ struct GuiState {
   bool side_by_side = false;
   bool wireframe = false;
   ViewField field = ViewField::None;
+  /// Where the named open ends of every object are (the centroid of each boundary loop that
+  /// app::end_name names), with their names; refreshed with the view.
+  std::vector<std::pair<engine::Vec3, std::string>> end_labels;
   std::optional<engine::Vec3> plane_origin;
   /// The Cross-section controls are open: only then is the plane drawn over the view (a tool,
   /// not part of the plan: snapshots do not show it).

@@ -35,13 +35,14 @@ std::filesystem::path path_from(const std::filesystem::path& file, const std::fi
 }
 
 json load_op(const std::string& object, const std::filesystem::path& file,
-             const std::filesystem::path& recording, bool prepare, double prepare_edge_length) {
-  namespace fs = std::filesystem;
+             const std::filesystem::path& recording, bool prepare, double prepare_edge_length,
+             const std::filesystem::path& landmarks) {
   json op = {{"op", "load"}, {"object", object}, {"file", path_from(file, recording).string()}};
   if (prepare) {
     op["prepare"] = {{"smoothing", 10}};
     if (prepare_edge_length > 0.0) op["prepare"]["edge_length"] = prepare_edge_length;
   }
+  if (!landmarks.empty()) op["landmarks"] = path_from(landmarks, recording).string();
   return op;
 }
 

@@ -31,9 +31,10 @@ std::filesystem::path path_from(const std::filesystem::path& file, const std::fi
 /// {"op": "load", "object", "file"}, the file named by path_from(file, recording). With
 /// `prepare`, the file is a segmentation export prepared as it loads ({"prepare":
 /// {"smoothing": 10[, "edge_length"]}}, edge_length only when > 0).
+/// `landmarks` (not empty): the landmarks file naming the mesh's ends, named like `file`.
 nlohmann::json load_op(const std::string& object, const std::filesystem::path& file,
                        const std::filesystem::path& recording, bool prepare = false,
-                       double prepare_edge_length = 0.0);
+                       double prepare_edge_length = 0.0, const std::filesystem::path& landmarks = {});
 /// The material of one region of `object` (MaterialOp): region 0, the wall, as {"region":
 /// "wall"}; a patch's (region > 0) as {"at": p}, p the centroid of the region's lowest-numbered
 /// face now. Other regions keep their materials. Throws std::invalid_argument for a region no

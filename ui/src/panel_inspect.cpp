@@ -173,8 +173,9 @@ void lumen_profile_controls(GuiState& s) {
     if (n > 0) {
       *which = std::clamp(*which, 0, n - 1);
       const engine::Vec3 c = centre(*which);
+      const std::string end = app::end_name(*obj, loops[static_cast<std::size_t>(*which)]);
       ImGui::SameLine();
-      ImGui::TextDisabled("(%.1f, %.1f, %.1f)", c.x(), c.y(), c.z());
+      ImGui::TextDisabled("%s (%.1f, %.1f, %.1f)", end.empty() ? "" : end.c_str(), c.x(), c.y(), c.z());
     }
   }
   const std::optional<std::string> gate =

@@ -93,12 +93,14 @@ void open_controls(GuiState& s) {
   const fs::path anatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
   if (gated_button(s.widgets, "Aortic arch", why,
                    "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces)."))
-    s.perform(load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file()),
+    s.perform(load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file(), false, 0.0,
+                      anatomy / "landmarks.json"),
               "Loaded the bundled aortic arch");
   ImGui::SameLine();
   if (gated_button(s.widgets, "Pulmonary artery", why,
                    "The bundled pulmonary artery beside the arch (coarse)."))
-    s.perform(load_op("pulmonary", anatomy / "pulmonary.ply", s.controller.recorder().file()),
+    s.perform(load_op("pulmonary", anatomy / "pulmonary.ply", s.controller.recorder().file(), false, 0.0,
+                      anatomy / "landmarks.json"),
               "Loaded the bundled pulmonary artery");
 }
 

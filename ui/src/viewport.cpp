@@ -80,8 +80,12 @@ void click(GuiState& s, double snap_angle) {
         break;
       }
       if (!s.fix.run) {
+      {
+        const std::string end = app::end_name(*obj, obj->mesh.boundary_loops()[std::size_t(h.boundary_loop)]);
         s.perform(fix_loop_op(obj->name, h.boundary_loop, s.has_op("fix")),
-                  "Fixed boundary loop " + std::to_string(h.boundary_loop) + " of '" + obj->name + "'");
+                  "Fixed boundary loop " + std::to_string(h.boundary_loop) + " of '" + obj->name + "'" +
+                      (end.empty() ? "" : " (" + end + ")"));
+      }
         break;
       }
       s.fix.clicks.push_back(on_boundary);

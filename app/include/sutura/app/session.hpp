@@ -91,6 +91,9 @@ struct LoadOp {
   std::filesystem::path file;  ///< resolved against the session file's directory
   double weld_tolerance = 1e-6;
   std::optional<PrepareSpec> prepare;
+  /// A landmarks file (`sutura generate`'s landmarks.json): the open ends listed under the
+  /// mesh file's stem name the object's ends (SceneObject::ends). Resolved like `file`.
+  std::optional<std::filesystem::path> landmarks;
 };
 
 /// Camera of a snapshot: explicit eye/target/up, or a view direction fitted to the objects.

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "sutura/engine/anatomy/aortic_arch.hpp"
 #include "sutura/engine/measure/vertex_fields.hpp"
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/surface_attributes.hpp"
@@ -30,7 +31,16 @@ struct SceneObject {
   /// (state, rest shape and pending y0, materials, constraints, loads, velocity, reference
   /// positions, marks).
   engine::SurfaceAttributes sim;
+  /// The open ends as the mesh came, named (from a landmarks file given to `load`, or by
+  /// `prepare`): centre, normal and radius where each was. end_name() matches them to the
+  /// boundary loops of the mesh now.
+  std::vector<engine::VesselEnd> ends;
 };
+
+/// The name of the end whose boundary loop `loop` (vertices of obj.mesh) is: the named end
+/// whose centre lies within half its radius (at least 0.5 mm) of the loop's centroid, or ""
+/// (an end made by an edit, or one an incision has opened into a cut). O(loop + ends).
+std::string end_name(const SceneObject& obj, const std::vector<engine::VertexId>& loop);
 
 class Workspace {
   using Slots = std::vector<std::shared_ptr<SceneObject>>;
