@@ -71,7 +71,7 @@ void finish_worker(GuiState& s) {
     std::string why;
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", outcome->details.value("seconds", 0.0));
-    if (s.controller.start(next, why)) {
+    if (s.start_run(next, s.run + 1, s.runs, why)) {
       s.info(outcome->op + " phase finished in " + seconds + " s; the next phase is running");
       return;
     }

@@ -42,6 +42,15 @@ render::Camera GuiState::shown_camera() const {
   return c;
 }
 
+bool GuiState::start_run(const nlohmann::json& op, int number, int total, std::string& why) {
+  if (!controller.start(op, why)) return false;
+  run_started = std::chrono::steady_clock::now();
+  run_s_at_start.reset();
+  run = number;
+  runs = total;
+  return true;
+}
+
 const app::SceneObject* GuiState::selected() const {
   if (controller.busy()) return nullptr;
   const auto& objs = controller.workspace().objects();

@@ -3,6 +3,7 @@
 // (recording + execution), the stage machine, the camera, the planning drafts, the view
 // options and the message line. Panels are free functions over it (panels.hpp).
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -128,6 +129,14 @@ struct GuiState {
   /// Simulate ops still to start, in order, once the running one has succeeded (the flap
   /// method's second phase); emptied when a run fails or is cancelled.
   std::deque<nlohmann::json> queued_runs;
+  /// The running op: when it started, the s of its first report (progress_text), and its
+  /// number among the runs the last Run simulation started.
+  std::chrono::steady_clock::time_point run_started;
+  std::optional<double> run_s_at_start;
+  int run = 1, runs = 1;
+  /// Starts `op` on the worker as run number `number` of `total`; false (and `why`) when it
+  /// does not parse.
+  bool start_run(const nlohmann::json& op, int number, int total, std::string& why);
   std::optional<Pick> hover;
 
   // Inspect.

@@ -1,5 +1,6 @@
 // The Simulate section: run settings, start on the worker thread, progress, pause/cancel.
 #include "panels.hpp"
+#include "progress_text.hpp"
 #include "sutura/app/session.hpp"
 
 namespace sutura::ui {
@@ -90,7 +91,7 @@ void simulate_section(GuiState& s) {
                        ? flap_relaxation_ops(s.simulation.collapse_barrier)
                        : std::vector<nlohmann::json>{simulate_op(s.simulation.steps, s.simulation.dt,
                                                                  relax, s.simulation.collapse_barrier)};
-               s.controller.start(ops.front(), why)) {
+               s.start_run(ops.front(), 1, int(ops.size()), why)) {
       s.queued_runs.assign(ops.begin() + 1, ops.end());
       s.stages.simulation_started();
       s.tool = Tool::Navigate;
@@ -101,10 +102,12 @@ void simulate_section(GuiState& s) {
   }
   if (running) {
     const LiveProgress p = s.controller.progress();
-    char label[96];
-    std::snprintf(label, sizeof label, "%s  step %d of %d%s", p.phase.empty() ? "starting" : p.phase.c_str(),
-                  p.step, p.steps, p.paused ? "  (paused)" : "");
-    ImGui::ProgressBar(float(p.fraction), ImVec2(-1, 0), label);
+    if (!s.run_s_at_start && p.s >= 0.0) s.run_s_at_start = p.s;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - s.run_started).count();
+    const ProgressText text = progress_text(p, elapsed, s.run_s_at_start, s.run, s.runs);
+    ImGui::ProgressBar(float(text.fraction), ImVec2(-1, 0), text.bar.c_str());
+    ImGui::TextWrapped("%s", text.detail.c_str());
     if (gated_button(s.widgets, p.paused ? "Resume" : "Pause", s.why_not(Action::PauseResume)))
       s.controller.set_paused(!p.paused);
     ImGui::SameLine();

@@ -33,6 +33,7 @@ struct LiveProgress {
   int step = 0;
   int steps = 0;
   double fraction = 0.0;
+  double s = -1.0;  ///< RunProgress::s: the relaxation's rest-shape parameter; -1 for plain dynamics
   bool paused = false;
   /// Latest positions by object name (only objects being simulated).
   std::vector<std::pair<std::string, std::vector<engine::Vec3>>> positions;
