@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 // The state of one replay and the execution of every op on it. replay.cpp runs the loop;
 // replay_scene_ops.cpp and replay_simulation_ops.cpp execute the two op families.
 #include <chrono>
@@ -88,11 +89,12 @@ struct Run {
   json execute(const UnloadOp& op);
   json execute(const SimulateOp& op);
   /// Passes a long op's progress (step of steps, current merged positions `x`, and for a
-  /// relaxation its s, residual and Newton iterations) to options.on_progress; false when the caller asks to cancel.
+  /// relaxation its s, range of s, residual and Newton iterations) to options.on_progress;
+  /// false when the caller asks to cancel.
   bool report_progress(const std::string& phase, int step, int steps, const MergedSystem& merged,
                        const std::vector<engine::Vec3>& x, double s = -1.0,
                        double residual = -1.0, int newton_iterations = -1,
-                       int quasi_newton_iterations = 0);
+                       int quasi_newton_iterations = 0, std::array<double, 2> s_range = {-1.0, -1.0});
   json execute(const ProbeOp& op);
   json execute(const CheckOp& op);
 

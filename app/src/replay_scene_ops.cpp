@@ -44,8 +44,12 @@ std::vector<engine::VesselEnd> read_named_ends(const std::filesystem::path& file
   if (size > (std::uintmax_t{16} << 20)) throw std::runtime_error(where + " is larger than 16 MiB");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + where);
-  const json j = json::parse(in, nullptr, false);
-  if (j.is_discarded()) throw std::runtime_error(where + " is not valid JSON");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(where + " is not valid JSON (at byte " + std::to_string(e.byte) + ")");
+  }
   if (!j.is_object() || !j.contains(stem))
     throw std::runtime_error(where + " has no entry '" + stem + "' (named after the mesh file)");
   const json* ends = j[stem].is_object() && j[stem].contains("ends") ? &j[stem]["ends"] : nullptr;

@@ -465,7 +465,7 @@ json Run::relax(const SimulateOp& op) {
   const engine::RelaxationHook hook = [&](const engine::RelaxationProgress& p) {
     return report_progress(p.phase, p.step, p.steps, merged, merged.state().x, p.s, p.residual,
                            params.solver == engine::RelaxationSolver::Static ? p.newton_iterations : -1,
-                           p.quasi_newton_iterations);
+                           p.quasi_newton_iterations, {params.s_start, params.s_end});
   };
   const engine::RelaxationResult r =
       engine::relax(merged.system(), merged.rest(), y0, x0, merged.state(), params, hook);
@@ -511,7 +511,7 @@ json Run::relax(const SimulateOp& op) {
 bool Run::report_progress(const std::string& phase, int step, int steps,
                           const MergedSystem& merged, const std::vector<engine::Vec3>& x,
                           double s, double residual, int newton_iterations,
-                          int quasi_newton_iterations) {
+                          int quasi_newton_iterations, std::array<double, 2> s_range) {
   if (past_deadline()) return false;
   if (!options.on_progress) return true;
   RunProgress p;
@@ -520,6 +520,8 @@ bool Run::report_progress(const std::string& phase, int step, int steps,
   p.steps = steps;
   p.fraction = steps > 0 ? static_cast<double>(step) / steps : 0.0;
   p.s = s;
+  p.s_start = s_range[0];
+  p.s_end = s_range[1];
   p.residual = residual;
   p.newton_iterations = newton_iterations;
   p.quasi_newton_iterations = quasi_newton_iterations;

@@ -59,6 +59,11 @@ TEST(OpBuilders, AMaterialIsRecordedForItsRegionOnly) {
   const sutura::engine::Vec3 c = (m.positions()[t[0]] + m.positions()[t[1]] + m.positions()[t[2]]) / 3.0;
   EXPECT_EQ(patch["at"], point_json(c));
   EXPECT_THROW(material_op(m, face_material, "a", 2, 1.0, 0.45, 1.0), std::invalid_argument);
+  // Only the values given: the region keeps the others.
+  const nlohmann::json thinner = material_op(m, face_material, "a", 1, std::nullopt, std::nullopt, 0.35);
+  EXPECT_EQ(thinner["thickness"], 0.35);
+  EXPECT_FALSE(thinner.contains("youngs_modulus"));
+  EXPECT_FALSE(thinner.contains("poisson_ratio"));
 }
 
 // What a float field records: the decimal the surgeon typed, not the float's binary expansion.

@@ -25,13 +25,6 @@ engine::SurfaceMesh two_strips() {
   return engine::load_mesh(std::string(SUTURA_SOURCE_DIR) + "/tests/gui/two_strips.obj");
 }
 
-engine::BoundaryChain chain(const engine::SurfaceMesh& m, const Vec3& from, const Vec3& to) {
-  engine::ChainSpec s;
-  s.from = from;
-  s.to = to;
-  return engine::find_boundary_chain(m, s);
-}
-
 // As the join op resolves a recorded side.
 engine::BoundaryChain chain(const engine::SurfaceMesh& m, const ui::ChainEnds& side) {
   engine::ChainSpec s;
@@ -161,10 +154,10 @@ TEST(SuturePreview, TheSameVertexTwiceIsItsWholeLoop) {
   EXPECT_EQ(p.meeting_ends[0][0], bottom);
   EXPECT_EQ(p.meeting_ends[0][1], top);
   // Recorded as loops.
-  const nlohmann::json op = ui::join_op("a", {bottom, bottom}, {top, top}, false);
+  const nlohmann::json op = ui::join_op("a", {bottom, bottom, std::nullopt}, {top, top, std::nullopt}, false);
   EXPECT_EQ(op["chains"][0], nlohmann::json({{"loop", {bottom.x(), bottom.y(), bottom.z()}}}));
   EXPECT_EQ(op["chains"][1], nlohmann::json({{"loop", {top.x(), top.y(), top.z()}}}));
-  const nlohmann::json open = ui::join_op("a", {bottom, top}, {top, bottom}, false);
+  const nlohmann::json open = ui::join_op("a", {bottom, top, std::nullopt}, {top, bottom, std::nullopt}, false);
   EXPECT_TRUE(open["chains"][0].contains("from"));
 }
 
@@ -213,7 +206,7 @@ TEST(SuturePreview, TheSamePointTwiceOnACutGoesFromLipToLip) {
   };
   EXPECT_TRUE(passes(a, {30.3, 0.3, 0}));
   EXPECT_FALSE(passes(a, {0, -5, 0}));
-  for (const Vec3 strip_corner : {Vec3(0, -5, 0), Vec3(40, -5, 0), Vec3(40, 5, 0), Vec3(0, 5, 0)})
+  for (const Vec3& strip_corner : {Vec3(0, -5, 0), Vec3(40, -5, 0), Vec3(40, 5, 0), Vec3(0, 5, 0)})
     EXPECT_TRUE(passes(b, strip_corner));
   EXPECT_NEAR(tip, 20.0, 1.0);
   EXPECT_NEAR(flap, 2 * 5.3 + 100.0, 2.0);

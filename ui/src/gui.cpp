@@ -64,6 +64,13 @@ int framebuffer_x(float x, int width, int fb_width) {
 void finish_worker(GuiState& s) {
   const auto outcome = s.controller.poll();
   if (!outcome) return;
+  // A cancel that came after the run ended, before this poll, still stops the plan.
+  if (outcome->ok && !s.queued_runs.empty() && s.controller.cancel_requested()) {
+    s.queued_runs.clear();
+    s.stages.simulation_finished();
+    s.info(outcome->op + " finished; the next run was cancelled before it started");
+    return;
+  }
   if (outcome->ok && !s.queued_runs.empty()) {
     // The next phase starts in this same frame: the run never looks idle in between.
     const nlohmann::json next = s.queued_runs.front();

@@ -45,7 +45,6 @@ render::Camera GuiState::shown_camera() const {
 bool GuiState::start_run(const nlohmann::json& op, int number, int total, std::string& why) {
   if (!controller.start(op, why)) return false;
   run_started = std::chrono::steady_clock::now();
-  run_s_at_start.reset();
   run = number;
   runs = total;
   return true;

@@ -79,6 +79,9 @@ struct RemeshDraft {
 struct MaterialDraft {
   int region = 0;  ///< index into the object's materials: 0 the wall, others patches
   float youngs_modulus = 1.0f, poisson_ratio = 0.45f, thickness = 0.8f;
+  /// The fields as loaded: a field still equal to its loaded value is not recorded, so a value
+  /// the fields cannot show exactly (outside their range, more digits than a float) is kept.
+  float loaded_youngs_modulus = 1.0f, loaded_poisson_ratio = 0.45f, loaded_thickness = 0.8f;
   std::size_t loaded_object = ~std::size_t{0};
   int loaded_region = -1;
   std::uint64_t loaded_revision = ~std::uint64_t{0};
@@ -129,10 +132,9 @@ struct GuiState {
   /// Simulate ops still to start, in order, once the running one has succeeded (the flap
   /// method's second phase); emptied when a run fails or is cancelled.
   std::deque<nlohmann::json> queued_runs;
-  /// The running op: when it started, the s of its first report (progress_text), and its
-  /// number among the runs the last Run simulation started.
+  /// The running op: when it started, and its number among the runs the last Run simulation
+  /// started (progress_text).
   std::chrono::steady_clock::time_point run_started;
-  std::optional<double> run_s_at_start;
   int run = 1, runs = 1;
   /// Starts `op` on the worker as run number `number` of `total`; false (and `why`) when it
   /// does not parse.

@@ -47,10 +47,12 @@ json load_op(const std::string& object, const std::filesystem::path& file,
 }
 
 json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_material,
-                 const std::string& object, int region, double youngs_modulus, double poisson_ratio,
-                 double thickness) {
-  json op = {{"op", "material"}, {"object", object}, {"youngs_modulus", youngs_modulus},
-             {"poisson_ratio", poisson_ratio}, {"thickness", thickness}};
+                 const std::string& object, int region, std::optional<double> youngs_modulus,
+                 std::optional<double> poisson_ratio, std::optional<double> thickness) {
+  json op = {{"op", "material"}, {"object", object}};
+  if (youngs_modulus) op["youngs_modulus"] = *youngs_modulus;
+  if (poisson_ratio) op["poisson_ratio"] = *poisson_ratio;
+  if (thickness) op["thickness"] = *thickness;
   if (region == 0) {
     op["region"] = "wall";
     return op;

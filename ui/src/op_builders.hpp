@@ -37,11 +37,11 @@ nlohmann::json load_op(const std::string& object, const std::filesystem::path& f
                        double prepare_edge_length = 0.0, const std::filesystem::path& landmarks = {});
 /// The material of one region of `object` (MaterialOp): region 0, the wall, as {"region":
 /// "wall"}; a patch's (region > 0) as {"at": p}, p the centroid of the region's lowest-numbered
-/// face now. Other regions keep their materials. Throws std::invalid_argument for a region no
-/// face has.
+/// face now. Only the values given are recorded: the region keeps the others, and the other
+/// regions keep their materials. Throws std::invalid_argument for a region no face has.
 nlohmann::json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_material,
-                           const std::string& object, int region, double youngs_modulus,
-                           double poisson_ratio, double thickness);
+                           const std::string& object, int region, std::optional<double> youngs_modulus,
+                           std::optional<double> poisson_ratio, std::optional<double> thickness);
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
 /// equivalent `constrain` op with a boundary selection.
 nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);

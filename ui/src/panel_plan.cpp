@@ -260,6 +260,10 @@ void load_controls(GuiState& s) {
               "'" + s.selected()->name + "' unloaded: in equilibrium under its pressure where it was imaged");
 }
 
+// What the material fields accept (the session format accepts any E and thickness > 0 and
+// nu in [0, 0.5); a region's value outside these is shown in its line and kept unless edited).
+constexpr float kMinE = 0.001f, kMaxE = 10000.0f, kMaxNu = 0.499f, kMinThickness = 0.01f, kMaxThickness = 10.0f;
+
 // One region per material of the object: the wall (its first material) and each patch. The
 // fields show the chosen region's own values; applying changes that region only.
 void material_controls(GuiState& s) {
@@ -271,7 +275,10 @@ void material_controls(GuiState& s) {
   MaterialDraft& d = s.material;
   const auto& materials = obj->sim.materials;
   const auto& face_material = obj->sim.face_material;
-  if (d.region < 0 || d.region >= int(materials.size())) d.region = 0;
+  // A patch cut away entirely (a resection) has no faces left: back to the wall.
+  if (d.region < 0 || d.region >= int(materials.size()) ||
+      (d.region > 0 && std::find(face_material.begin(), face_material.end(), d.region) == face_material.end()))
+    d.region = 0;
   if (d.loaded_object != s.object || d.loaded_region != d.region ||
       d.loaded_revision != s.controller.revision()) {
     const engine::ShellMaterial& m = materials[std::size_t(d.region)];
@@ -279,6 +286,11 @@ void material_controls(GuiState& s) {
     d.poisson_ratio = float(m.poisson_ratio);
     d.thickness = float(m.thickness);
     d.loaded_object = s.object, d.loaded_region = d.region, d.loaded_revision = s.controller.revision();
+    d.youngs_modulus = std::clamp(d.youngs_modulus, kMinE, kMaxE);
+    d.poisson_ratio = std::clamp(d.poisson_ratio, 0.0f, kMaxNu);
+    d.thickness = std::clamp(d.thickness, kMinThickness, kMaxThickness);
+    d.loaded_youngs_modulus = d.youngs_modulus, d.loaded_poisson_ratio = d.poisson_ratio,
+    d.loaded_thickness = d.thickness;
   }
   for (std::size_t k = 0; k < materials.size(); ++k) {
     const auto faces = std::count(face_material.begin(), face_material.end(), int(k));
@@ -286,28 +298,40 @@ void material_controls(GuiState& s) {
     if (noted_radio(s.widgets, k == 0 ? std::string("Wall") : "Patch " + std::to_string(k), d.region == int(k)))
       d.region = int(k);
     ImGui::SameLine();
-    ImGui::TextDisabled("E %.3g MPa, nu %.2f, %.2f mm, %ld faces", materials[k].youngs_modulus,
+    ImGui::TextDisabled("E %.4g MPa, nu %.4g, %.4g mm, %ld faces", materials[k].youngs_modulus,
                         materials[k].poisson_ratio, materials[k].thickness, long(faces));
   }
-  number_field("E [MPa]", &d.youngs_modulus, 0.05f, 200.0f, 0.05f);
+  number_field("E [MPa]", &d.youngs_modulus, kMinE, kMaxE, 0.05f);
   s.widgets.note("E [MPa]");
-  number_field("Poisson ratio", &d.poisson_ratio, 0.0f, 0.49f, 0.01f);
+  number_field("Poisson ratio", &d.poisson_ratio, 0.0f, kMaxNu, 0.01f, "%.3f");
   s.widgets.note("Poisson ratio");
-  number_field("thickness [mm]", &d.thickness, 0.05f, 3.0f, 0.05f);
+  number_field("thickness [mm]", &d.thickness, kMinThickness, kMaxThickness, 0.05f);
   s.widgets.note("thickness [mm]");
+  // Only what was changed is recorded: the region keeps its other values exactly.
+  const auto edited = [](float now, float loaded) { return now != loaded ? std::optional<double>(as_typed(now)) : std::nullopt; };
+  const std::optional<double> e = edited(d.youngs_modulus, d.loaded_youngs_modulus),
+                              nu = edited(d.poisson_ratio, d.loaded_poisson_ratio),
+                              t = edited(d.thickness, d.loaded_thickness);
+  std::optional<std::string> why = s.why_not(Action::EditMaterial);
+  if (!why && !e && !nu && !t) why = "Change a value first.";
   const std::string target = d.region == 0 ? "the wall" : "patch " + std::to_string(d.region);
-  if (gated_button(s.widgets, d.region == 0 ? "Apply to the wall" : "Apply to this patch",
-                   s.why_not(Action::EditMaterial),
+  if (gated_button(s.widgets, d.region == 0 ? "Apply to the wall" : "Apply to this patch", why,
                    d.region == 0 ? "The vessel wall's material; patches keep theirs."
                                  : "This patch's material; the wall and other patches keep theirs.")) {
-    s.perform(material_op(obj->mesh, face_material, obj->name, d.region, as_typed(d.youngs_modulus),
-                          as_typed(d.poisson_ratio), as_typed(d.thickness)),
-              [&] {
-                char values[96];
-                std::snprintf(values, sizeof values, ": E %.3g MPa, nu %.2f, %.2f mm", d.youngs_modulus,
-                              d.poisson_ratio, d.thickness);
-                return "Material of " + target + " of '" + obj->name + "' set" + values;
-              }());
+    const std::string name = obj->name;
+    const int region = d.region;
+    const ActionOutcome r = s.controller.run(material_op(obj->mesh, face_material, name, region, e, nu, t));
+    if (!r.ok) {
+      s.error(r.op + " failed: " + r.message);
+      return;
+    }
+    // The region's material as it is now (the op's report), all of it: what was changed and
+    // what was kept.
+    const nlohmann::json& v = r.details.value("values", nlohmann::json::object());
+    char values[128];
+    std::snprintf(values, sizeof values, ": E %.4g MPa, nu %.4g, %.4g mm", v.value("youngs_modulus", 0.0),
+                  v.value("poisson_ratio", 0.0), v.value("thickness", 0.0));
+    s.info("Material of " + target + " of '" + name + "' set" + values);
   }
 }
 

@@ -54,7 +54,9 @@ void simulate_section(GuiState& s) {
   ImGui::EndDisabled();
   ImGui::EndDisabled();
   tooltip_for_last_item(no_relax ? *no_relax
-                                 : "Increments of s (rest shape from the joined to the split "
+                        : s.simulation.staged_dynamics
+                            ? "The flap method has its own steps: 16 static to s = 0.6, then 80 + 40 dynamic."
+                            : "Increments of s (rest shape from the joined to the split "
                                    "shape). Fewer, larger increments usually need fewer Newton "
                                    "iterations in all; more give more frames of the animation.");
   ImGui::BeginDisabled(!no_relax.has_value());
@@ -102,10 +104,9 @@ void simulate_section(GuiState& s) {
   }
   if (running) {
     const LiveProgress p = s.controller.progress();
-    if (!s.run_s_at_start && p.s >= 0.0) s.run_s_at_start = p.s;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - s.run_started).count();
-    const ProgressText text = progress_text(p, elapsed, s.run_s_at_start, s.run, s.runs);
+    const ProgressText text = progress_text(p, elapsed, s.run, s.runs);
     ImGui::ProgressBar(float(text.fraction), ImVec2(-1, 0), text.bar.c_str());
     ImGui::TextWrapped("%s", text.detail.c_str());
     if (gated_button(s.widgets, p.paused ? "Resume" : "Pause", s.why_not(Action::PauseResume)))

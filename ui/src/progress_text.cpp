@@ -18,22 +18,22 @@ std::string phase_words(const std::string& phase) {
 }
 
 std::string duration(double seconds) {
+  const long whole = std::max(1L, std::lround(seconds));  // rounded once, then split
   char buf[32];
-  if (seconds < 60.0) std::snprintf(buf, sizeof buf, "%.0f s", std::max(1.0, std::round(seconds)));
-  else std::snprintf(buf, sizeof buf, "%.0f min %02.0f s", std::floor(seconds / 60.0), std::fmod(std::round(seconds), 60.0));
+  if (whole < 60) std::snprintf(buf, sizeof buf, "%ld s", whole);
+  else std::snprintf(buf, sizeof buf, "%ld min %02ld s", whole / 60, whole % 60);
   return buf;
 }
 
 }  // namespace
 
-ProgressText progress_text(const LiveProgress& p, double elapsed, std::optional<double> s_at_start, int run,
-                           int runs) {
+ProgressText progress_text(const LiveProgress& p, double elapsed, int run, int runs) {
   ProgressText t;
   const bool relaxing = p.s >= 0.0;
   if (relaxing) {
-    // s only grows; the part of [s at the start, 1] covered so far.
-    const double s0 = s_at_start.value_or(p.s);
-    t.fraction = s0 < 1.0 ? std::clamp((p.s - s0) / (1.0 - s0), 0.0, 1.0) : 1.0;
+    // s only grows: the part of its range covered so far.
+    const double s0 = std::max(0.0, p.s_start), s1 = p.s_end > s0 ? p.s_end : 1.0;
+    t.fraction = s1 > s0 ? std::clamp((p.s - s0) / (s1 - s0), 0.0, 1.0) : 1.0;
   } else {
     t.fraction = std::clamp(p.fraction, 0.0, 1.0);
   }
@@ -41,7 +41,8 @@ ProgressText progress_text(const LiveProgress& p, double elapsed, std::optional<
   if (p.phase.empty())
     std::snprintf(bar, sizeof bar, "%s", phase_words(p.phase).c_str());
   else if (relaxing)
-    std::snprintf(bar, sizeof bar, "%s: s = %.2f of 1", phase_words(p.phase).c_str(), p.s);
+    std::snprintf(bar, sizeof bar, "%s: s = %.2f (to %.2f)", phase_words(p.phase).c_str(), p.s,
+                  p.s_end > 0.0 ? p.s_end : 1.0);
   else
     std::snprintf(bar, sizeof bar, "%s: step %d of %d", phase_words(p.phase).c_str(), p.step, p.steps);
   t.bar = bar;
@@ -51,7 +52,7 @@ ProgressText progress_text(const LiveProgress& p, double elapsed, std::optional<
     t.detail += "; settling takes as long as the shape needs";
   } else if (t.fraction >= 0.05 && elapsed >= 2.0 && t.fraction < 1.0) {
     t.detail += ", about " + duration(elapsed * (1.0 - t.fraction) / t.fraction) + " left";
-    if (relaxing) t.detail += " before settling";
+    if (relaxing && p.s_end >= 1.0) t.detail += " before settling";
   }
   if (runs > 1) t.detail += " (run " + std::to_string(run) + " of " + std::to_string(runs) + ")";
   return t;

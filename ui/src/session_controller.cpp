@@ -27,6 +27,8 @@ bool SessionController::on_progress(const app::RunProgress& p) {
   live_.steps = p.steps;
   live_.fraction = p.fraction;
   live_.s = p.s;
+  live_.s_start = p.s_start;
+  live_.s_end = p.s_end;
   live_.positions.clear();
   for (const auto& [name, x] : p.positions) live_.positions.emplace_back(name, std::vector(x.begin(), x.end()));
   ++live_.positions_revision;

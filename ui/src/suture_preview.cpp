@@ -56,7 +56,7 @@ std::vector<Candidate> candidates(const engine::SurfaceMesh& mesh, const engine:
                                   bool lip_to_lip) {
   std::vector<Candidate> out;
   if (p != q) {
-    for (const ChainEnds ends : {ChainEnds{p, q, {}}, ChainEnds{q, p, {}}})
+    for (const ChainEnds& ends : {ChainEnds{p, q, {}}, ChainEnds{q, p, {}}})
       if (auto c = resolve(mesh, ends)) out.push_back({ends, std::move(*c)});
     return out;
   }
@@ -83,7 +83,8 @@ std::vector<Candidate> candidates(const engine::SurfaceMesh& mesh, const engine:
 }
 
 // `ends` with `via` set, if needed, so that the join resolves exactly `chain`: none when the
-// ends alone do; otherwise a vertex of the chain (from its middle outwards) that picks it.
+// ends alone do; otherwise a vertex of the chain (from its middle outwards) that picks it, or
+// failing that its middle vertex.
 ChainEnds naming(const engine::SurfaceMesh& mesh, ChainEnds ends, const engine::BoundaryChain& chain) {
   if (ends.loop()) return ends;
   ends.via.reset();
@@ -99,7 +100,10 @@ ChainEnds naming(const engine::SurfaceMesh& mesh, ChainEnds ends, const engine::
     const auto named = resolve(mesh, ends);
     if (named && named->vertices == chain.vertices) return ends;
   }
-  ends.via.reset();
+  // No vertex names it alone (coincident copies of several cuts tie): keep the middle one.
+  // Never fall back to the ends alone, which at one point would be read as the whole loop;
+  // the preview shows what the join resolves from this.
+  ends.via = mesh.position(chain.vertices[n / 2]);
   return ends;
 }
 

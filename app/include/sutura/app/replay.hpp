@@ -25,6 +25,9 @@ struct RunProgress {
   int steps = 0;          ///< steps planned in this op
   double fraction = 0.0;  ///< of the whole op, [0, 1]
   double s = -1.0;         ///< relaxation parameter reached, [0, 1]; -1 for plain dynamics
+  /// The relaxation's range of s: where it started (a later run continues from the s an
+  /// earlier one stopped at) and where it stops (`until`); -1 for plain dynamics.
+  double s_start = -1.0, s_end = -1.0;
   double residual = -1.0;  ///< static residual |r| over free DOFs, N; -1 when not computed
   int newton_iterations = -1;  ///< of the last relaxation increment; -1 when not counted
   int quasi_newton_iterations = 0;  ///< of the last relaxation increment (reused factorisations)

@@ -135,13 +135,13 @@ struct ReportOp {
   std::filesystem::path file;
 };
 
-/// Sets the material of every face of an object.
 /// The material fields a session line gives; the others come from `base` (applied_to).
 struct MaterialFields {
   std::optional<double> youngs_modulus, poisson_ratio, thickness, density, drilling_factor;
   [[nodiscard]] engine::ShellMaterial applied_to(engine::ShellMaterial base) const;
 };
 
+/// Sets the material of an object's faces, all of them or one region's.
 struct MaterialOp {
   std::string object;
   /// Which faces get the material. All: every face, one material for the whole object (the

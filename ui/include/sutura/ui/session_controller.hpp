@@ -34,6 +34,7 @@ struct LiveProgress {
   int steps = 0;
   double fraction = 0.0;
   double s = -1.0;  ///< RunProgress::s: the relaxation's rest-shape parameter; -1 for plain dynamics
+  double s_start = -1.0, s_end = -1.0;  ///< RunProgress::s_start, s_end
   bool paused = false;
   /// Latest positions by object name (only objects being simulated).
   std::vector<std::pair<std::string, std::vector<engine::Vec3>>> positions;
@@ -78,6 +79,9 @@ class SessionController {
   [[nodiscard]] bool busy() const { return worker_.joinable(); }
   void set_paused(bool paused);
   void cancel();  ///< asks the running op to stop; poll() then reports it cancelled
+  /// cancel() was called since the last op started (also when it came after the op had
+  /// finished but before poll() took its outcome: nothing that follows it should start).
+  [[nodiscard]] bool cancel_requested() const { return cancel_.load(); }
   [[nodiscard]] LiveProgress progress() const;
 
   /// The objects; only while !busy(). revision() increments after every change.
