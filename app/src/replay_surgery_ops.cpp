@@ -171,12 +171,6 @@ engine::BoundaryChain start_towards(const engine::SurfaceMesh& mesh, engine::Bou
   return c;
 }
 
-engine::Vec3 centroid(const engine::SurfaceMesh& mesh, const engine::BoundaryChain& c) {
-  engine::Vec3 s = engine::Vec3::Zero();
-  for (const auto v : c.vertices) s += mesh.position(v);
-  return s / double(c.vertices.size());
-}
-
 json mesh_counts(const SceneObject& obj) {
   return {{"vertices", obj.mesh.num_vertices()},
           {"faces", obj.mesh.num_faces()},
@@ -441,7 +435,8 @@ json Run::execute(const ResectOp& op) {
   for (const auto& l : cut_loops) loops.push_back(l.vertices.size());
   j["loop_vertices"] = loops;
   if (op.anastomosis) {
-    const engine::Vec3 ca = centroid(obj.mesh, cut_loops[0]), cb = centroid(obj.mesh, cut_loops[1]);
+    const engine::Vec3 ca = loop_centroid(obj.mesh, cut_loops[0].vertices),
+                       cb = loop_centroid(obj.mesh, cut_loops[1].vertices);
     // Start both loops on the same side so the ends are sutured without a twist.
     engine::Vec3 axis = cb - ca;
     if (axis.norm() < 1e-12) axis = op.planes[0].normal;

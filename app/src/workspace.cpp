@@ -38,11 +38,15 @@ std::string Workspace::names() const {
   return s.empty() ? "(none)" : s;
 }
 
+engine::Vec3 loop_centroid(const engine::SurfaceMesh& mesh, const std::vector<engine::VertexId>& loop) {
+  engine::Vec3 c = engine::Vec3::Zero();
+  for (const auto v : loop) c += mesh.position(v);
+  return loop.empty() ? c : engine::Vec3(c / static_cast<double>(loop.size()));
+}
+
 std::string end_name(const SceneObject& obj, const std::vector<engine::VertexId>& loop) {
   if (loop.empty() || obj.ends.empty()) return {};
-  engine::Vec3 c = engine::Vec3::Zero();
-  for (const auto v : loop) c += obj.mesh.position(v);
-  c /= static_cast<double>(loop.size());
+  const engine::Vec3 c = loop_centroid(obj.mesh, loop);
   const engine::VesselEnd* best = nullptr;
   double best_distance = 0.0;
   for (const auto& e : obj.ends) {

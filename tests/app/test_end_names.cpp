@@ -7,10 +7,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include "sutura/app/replay.hpp"
-#include "sutura/app/session.hpp"
+#include "replay_fixture.hpp"
 
 namespace {
 
@@ -19,17 +17,10 @@ using namespace sutura::app;
 
 const fs::path kAnatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("sutura_ends_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return sutura::testing::scratch_dir("ends", name); }
 
 ReplayResult run(const std::string& lines, const fs::path& dir) {
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  return replay(parse_session("{\"format\": \"sutura-session\", \"version\": 3}\n" + lines, dir / "s.jsonl"), o);
+  return sutura::testing::replay_text("{\"format\": \"sutura-session\", \"version\": 3}\n" + lines, dir);
 }
 
 std::string load_line(const fs::path& landmarks) {

@@ -6,10 +6,8 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
-#include "sutura/app/replay.hpp"
-#include "sutura/app/session.hpp"
+#include "replay_fixture.hpp"
 
 namespace {
 
@@ -27,12 +25,7 @@ const std::string kPatchedTube =
     "\"material\": {\"youngs_modulus\": 3.0, \"poisson_ratio\": 0.45, \"thickness\": 0.4}}\n";
 
 ReplayResult run(const std::string& text, const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sutura_material_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  return replay(parse_session(text, dir / "s.jsonl"), o);
+  return sutura::testing::replay_text(text, sutura::testing::scratch_dir("material", name));
 }
 
 const SceneObject& tube(const ReplayResult& r) { return *r.workspace.find("t"); }

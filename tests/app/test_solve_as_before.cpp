@@ -3,6 +3,8 @@
 // before and after compare like with like. Errors name line, op and field.
 #include <gtest/gtest.h>
 
+#include "replay_fixture.hpp"
+
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -33,18 +35,10 @@ const std::string kMeasure =
 // The 24-gon of R 4 as meshed.
 constexpr double kUnloadedArea = 49.69;
 
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("sutura_as_before_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return sutura::testing::scratch_dir("as_before", name); }
 
 ReplayResult run(const std::string& text, const std::string& name) {
-  const fs::path dir = scratch(name);
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  return replay(parse_session(text, dir / "s.jsonl"), o);
+  return sutura::testing::replay_text(text, scratch(name));
 }
 
 double area(const ReplayResult& r, const char* side) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "replay_fixture.hpp"
+
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session.hpp"
@@ -20,18 +22,10 @@ const std::string kTube =
     "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
     "\"segments_around\": 24, \"segments_along\": 20}\n";
 
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("sutura_surgery_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return sutura::testing::scratch_dir("surgery", name); }
 
 ReplayResult run(const std::string& text, const std::string& name) {
-  const fs::path dir = scratch(name);
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  return replay(parse_session(text, dir / "s.jsonl"), o);
+  return sutura::testing::replay_text(text, scratch(name));
 }
 
 // The error of a session whose last line fails, with its line number checked.

@@ -3,6 +3,8 @@
 // gives the old rest back; and the errors name line, op and field.
 #include <gtest/gtest.h>
 
+#include "replay_fixture.hpp"
+
 #include <filesystem>
 #include <fstream>
 
@@ -30,18 +32,10 @@ const std::string kMeasure =
     "{\"origin\": [0, 0, 10.2], \"normal\": [0, 0, 1]}}\n"
     "{\"op\": \"probe\", \"object\": \"t\", \"name\": \"wall\", \"point\": [4, 0, 10]}\n";
 
-fs::path scratch(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("sutura_unload_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return sutura::testing::scratch_dir("unload", name); }
 
 ReplayResult run(const std::string& text, const std::string& name) {
-  const fs::path dir = scratch(name);
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  return replay(parse_session(text, dir / "s.jsonl"), o);
+  return sutura::testing::replay_text(text, scratch(name));
 }
 
 nlohmann::json action(const ReplayResult& r, const std::string& op, int nth = 0) {

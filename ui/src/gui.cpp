@@ -123,11 +123,8 @@ void refresh_view(GuiState& s, float aspect) {
     s.end_labels.clear();
     for (const auto& o : s.controller.workspace().objects())
       for (const auto& loop : o.mesh.boundary_loops())
-        if (std::string name = app::end_name(o, loop); !name.empty()) {
-          engine::Vec3 c = engine::Vec3::Zero();
-          for (const auto v : loop) c += o.mesh.position(v);
-          s.end_labels.emplace_back(c / double(loop.size()), std::move(name));
-        }
+        if (std::string name = app::end_name(o, loop); !name.empty())
+          s.end_labels.emplace_back(app::loop_centroid(o.mesh, loop), std::move(name));
   }
   if (!s.controller.busy() && s.element_check_revision != s.controller.revision()) {
     s.element_check = check_elements(s.controller.workspace());

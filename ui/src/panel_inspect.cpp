@@ -159,11 +159,7 @@ void lumen_profile_controls(GuiState& s) {
   const auto* obj = s.selected();
   const auto loops = obj ? obj->mesh.boundary_loops() : std::vector<std::vector<engine::VertexId>>{};
   ImGui::TextWrapped("The lumen along the vessel's automatic centreline between two open ends.");
-  const auto centre = [&](int i) {
-    engine::Vec3 c = engine::Vec3::Zero();
-    for (const auto v : loops[static_cast<std::size_t>(i)]) c += obj->mesh.position(v);
-    return engine::Vec3(c / static_cast<double>(loops[static_cast<std::size_t>(i)].size()));
-  };
+  const auto centre = [&](int i) { return app::loop_centroid(obj->mesh, loops[static_cast<std::size_t>(i)]); };
   const int n = static_cast<int>(loops.size());
   for (int* which : {&s.profile_from, &s.profile_to}) {
     *which = n > 0 ? std::clamp(*which, 0, n - 1) : 0;

@@ -37,6 +37,9 @@ struct SceneObject {
   std::vector<engine::VesselEnd> ends;
 };
 
+/// The mean position of `loop`'s vertices in `mesh` (a boundary loop's centre). O(loop).
+engine::Vec3 loop_centroid(const engine::SurfaceMesh& mesh, const std::vector<engine::VertexId>& loop);
+
 /// The name of the end whose boundary loop `loop` (vertices of obj.mesh) is: the named end
 /// whose centre lies within half its radius (at least 0.5 mm) of the loop's centroid, or ""
 /// (an end made by an edit, or one an incision has opened into a cut). O(loop + ends).

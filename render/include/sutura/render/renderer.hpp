@@ -29,9 +29,10 @@ struct RenderOptions {
 
 /// Pixels of the column the scene's legend takes at the right edge of a width x height view:
 /// 0 without a colour map, with its show_legend off, or when the legend would not fit (more
-/// than half the width, even in the smallest font: a narrow view gets a smaller font). With a legend drawn (or legend_space), the scene is drawn in the view
-/// less this column, with that part's aspect, so that the legend never covers it: fit
-/// cameras and cast picking rays for (width - legend_width) x height.
+/// than half the width, even in the smallest font: a narrow view gets a smaller font). With a
+/// legend drawn (or legend_space), the scene is drawn in the view less this column, with that
+/// part's aspect, so that the legend never covers it: fit cameras and cast picking rays for
+/// (width - legend_width) x height.
 int legend_width(const Scene& scene, int width, int height);
 
 /// The MSAA samples render() uses: `requested`, clamped to [1, max_samples] (GL_MAX_SAMPLES;
