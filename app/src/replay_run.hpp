@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "snapshot.hpp"
+#include "sutura/app/plan.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/simulation.hpp"
 
@@ -31,6 +32,10 @@ struct Run {
   // Undo/redo: the workspace before each change (edits, constraints, loads, runs).
   std::vector<Workspace> undo_stack;
   std::vector<Workspace> redo_stack;
+  /// remember() calls so far: SessionRunner::execute adds a plan step for an action that made one.
+  std::uint64_t remembered = 0;
+  /// The steps the undo and redo stacks hold (plan.hpp); undo and redo move plan.applied.
+  Plan plan;
   /// Pushes the current workspace for undo and clears redo; called by every changing op
   /// before it takes an object to edit.
   void remember();

@@ -180,6 +180,7 @@ json mesh_counts(const SceneObject& obj) {
 }  // namespace
 
 void Run::remember() {
+  ++remembered;
   redo_stack.clear();
   undo_stack.push_back(workspace);  // shares every object until the op edits one
 }
@@ -218,6 +219,7 @@ json Run::execute(const UndoOp&) {
   redo_stack.push_back(std::move(workspace));
   workspace = std::move(undo_stack.back());
   undo_stack.pop_back();
+  if (plan.applied > 0) --plan.applied;
   return {{"undo_left", undo_stack.size()}, {"redo_left", redo_stack.size()}};
 }
 
@@ -226,6 +228,7 @@ json Run::execute(const RedoOp&) {
   undo_stack.push_back(std::move(workspace));
   workspace = std::move(redo_stack.back());
   redo_stack.pop_back();
+  if (plan.applied < plan.steps.size()) ++plan.applied;
   return {{"undo_left", undo_stack.size()}, {"redo_left", redo_stack.size()}};
 }
 

@@ -61,6 +61,7 @@ Action parse_action(const json& j, const std::filesystem::path& file, int line_n
   Action action;
   action.line = line_no;
   action.name = name;
+  action.source = j;
   try {
     const detail::OpParser* parser = nullptr;
     for (const auto* family : {&detail::scene_op_parsers(), &detail::simulation_op_parsers(),

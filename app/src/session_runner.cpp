@@ -1,5 +1,7 @@
 #include "sutura/app/session_runner.hpp"
 
+#include <algorithm>
+
 #include "replay_run.hpp"
 #include "sutura/engine/compute_threads.hpp"
 
@@ -12,6 +14,7 @@ struct SessionRunner::Checkpoint {
   Workspace workspace;
   json actions, outputs, probes, checks, measurements;
   std::vector<Workspace> undo_stack, redo_stack;
+  Plan plan;
 };
 
 // The Run refers to the session header and options, so they live next to it at a fixed
@@ -25,7 +28,7 @@ struct SessionRunner::Impl {
   Impl(Session h, ReplayOptions o)
       : header(std::move(h)), options(std::move(o)),
         run{header, options, {}, {}, json::array(), json::array(),
-            json::object(), json::array(), json::object(), {}, {}, {header.file}} {
+            json::object(), json::array(), json::object(), {}, {}, 0, {}, {header.file}} {
     run.inputs.insert(run.inputs.end(), options.protected_inputs.begin(), options.protected_inputs.end());
     if (options.time_limit > 0)
       run.deadline = start + std::chrono::duration_cast<clock_type::duration>(
@@ -52,6 +55,7 @@ json SessionRunner::execute(const Action& a) {
   const auto t0 = clock_type::now();
   if (impl_->options.threads > 0) engine::set_compute_threads(impl_->options.threads);
   json details;
+  const std::uint64_t remembered = run.remembered;
   if (run.past_deadline())
     throw SessionError(impl_->header.file.string(), a.line, a.name, "", "not run");
   try {
@@ -72,12 +76,23 @@ json SessionRunner::execute(const Action& a) {
   details["op"] = a.name;
   details["seconds"] = std::chrono::duration<double>(clock_type::now() - t0).count();
   run.actions.push_back(details);
+  if (run.remembered != remembered) {  // a step of the plan: it replaces the undone ones
+    run.plan.steps.resize(run.plan.applied);
+    run.plan.steps.push_back({a.line, a.name, a.source, details});
+    run.plan.applied = run.plan.steps.size();
+  }
   return details;
 }
 
 const Workspace& SessionRunner::workspace() const { return impl_->run.workspace; }
 
 const ReplayOptions& SessionRunner::options() const { return impl_->options; }
+
+Plan SessionRunner::plan() const {
+  Plan p = impl_->run.plan;
+  p.undoable = std::min(p.applied, impl_->run.undo_stack.size());
+  return p;
+}
 
 bool SessionRunner::stopped() const { return impl_->run.stopped; }
 
@@ -95,7 +110,7 @@ std::shared_ptr<const SessionRunner::Checkpoint> SessionRunner::checkpoint() con
   const detail::Run& r = impl_->run;
   return std::make_shared<const Checkpoint>(Checkpoint{r.workspace, r.actions, r.outputs,
                                                       r.probes, r.checks, r.measurements,
-                                                      r.undo_stack, r.redo_stack});
+                                                      r.undo_stack, r.redo_stack, r.plan});
 }
 
 void SessionRunner::restore(const Checkpoint& c) {
@@ -108,6 +123,7 @@ void SessionRunner::restore(const Checkpoint& c) {
   r.measurements = c.measurements;
   r.undo_stack = c.undo_stack;
   r.redo_stack = c.redo_stack;
+  r.plan = c.plan;
 }
 
 }  // namespace sutura::app

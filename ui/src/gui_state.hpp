@@ -127,6 +127,12 @@ struct GuiState {
   PatchDraft patch;
   ResectDraft resect;
   MaterialDraft material;
+  /// The plan list: the runner's plan at revision plan_revision, and the step selected for
+  /// inspection (an index into plan.steps; -1: none).
+  app::Plan plan;
+  std::uint64_t plan_revision = ~std::uint64_t{0};
+  int plan_selected = -1;
+  std::size_t plan_steps_shown = 0;  ///< steps when the list was last drawn (it scrolls to a new one)
   float pressure_mmhg = 80.0f;
   SimulationSettings simulation;
   /// Simulate ops still to start, in order, once the running one has succeeded (the flap

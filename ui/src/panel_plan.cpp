@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "panels.hpp"
+#include "sutura/app/plan.hpp"
 #include "suture_preview.hpp"
 
 namespace sutura::ui {
@@ -378,6 +379,10 @@ void plan_section(GuiState& s) {
   if (gated_button(s.widgets, "Undo", s.why_not(Action::Undo, "undo"), "Ctrl+Z")) undo(s);
   ImGui::SameLine();
   if (gated_button(s.widgets, "Redo", s.why_not(Action::Redo, "redo"), "Ctrl+Y")) redo(s);
+  if (noted_tree_node(s.widgets, "Plan steps")) {
+    plan_steps(s);
+    ImGui::TreePop();
+  }
 }
 
 void commit_incision(GuiState& s) {
@@ -427,7 +432,9 @@ void undo(GuiState& s) {
     s.error("Undo: " + *why);
     return;
   }
-  s.perform({{"op", "undo"}}, "Undone");
+  const app::Plan plan = s.controller.plan();
+  s.perform({{"op", "undo"}}, plan.applied == 0 ? std::string("Undone")
+                                                : "Undone: " + app::describe_action(plan.steps[plan.applied - 1].source));
 }
 
 void redo(GuiState& s) {
@@ -435,7 +442,10 @@ void redo(GuiState& s) {
     s.error("Redo: " + *why);
     return;
   }
-  s.perform({{"op", "redo"}}, "Redone");
+  const app::Plan plan = s.controller.plan();
+  s.perform({{"op", "redo"}}, plan.applied >= plan.steps.size()
+                                  ? std::string("Redone")
+                                  : "Redone: " + app::describe_action(plan.steps[plan.applied].source));
 }
 
 }  // namespace sutura::ui

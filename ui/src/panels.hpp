@@ -11,6 +11,9 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
+/// The plan list (in the Plan section): every step that changed the workspace, in words;
+/// the selected one shows what was recorded and what it did, and the last can be undone.
+void plan_steps(GuiState& s);
 /// A quit asked for: quits when nothing would be lost, otherwise a modal dialog lists what
 /// would be and offers "Quit anyway" and "Keep planning".
 void quit_dialog(GuiState& s);

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "gui_state.hpp"
+#include "sutura/app/plan.hpp"
 
 namespace sutura::ui {
 
@@ -158,6 +159,18 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           const std::string unwanted = x["message_not_contains"].get<std::string>();
           for (const auto& m : host.state.messages)
             if (m.text.find(unwanted) != std::string::npos) return fail("a message says: " + m.text);
+        }
+        if (x.contains("plan_applied") && !host.state.controller.busy()) {
+          const app::Plan plan = host.state.controller.plan();
+          if (plan.applied != x["plan_applied"].get<std::size_t>())
+            return fail("the plan has " + std::to_string(plan.applied) + " steps in effect");
+        }
+        if (x.contains("plan_contains") && !host.state.controller.busy()) {
+          const std::string want = x["plan_contains"].get<std::string>();
+          bool found = false;
+          for (const auto& step : host.state.controller.plan().steps)
+            found = found || app::describe_action(step.source).find(want) != std::string::npos;
+          if (!found) return fail("no plan step reads \"" + want + "\"");
         }
         if (x.contains("stage") &&
             x["stage"].get<std::string>() != std::string(to_string(host.state.stages.stage())))

@@ -15,6 +15,8 @@
 //   {"expect": {"stage": "Plan", "objects": N, "no_errors": true}}   fail if not so
 //   {"expect": {"message_contains": "text"}}   fail unless a shown message contains the text
 //   {"expect": {"message_not_contains": "text"}}   fail if a shown message contains the text
+//   {"expect": {"plan_applied": N, "plan_contains": "text"}}   fail unless N plan steps are in
+//       effect and some step's words (app::describe_action) contain the text
 //   {"time_frames": N}                 print the mean frame time of the next N frames
 //   {"quit": true}                     as closing the window (asks first when work would be lost)
 #include <filesystem>

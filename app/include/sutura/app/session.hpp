@@ -14,7 +14,7 @@
 #include <variant>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/material.hpp"
@@ -384,6 +384,9 @@ struct Action {
   int line = 0;     ///< 1-based line in the session file
   std::string name; ///< the op name as written ("generate", ...)
   Op op;
+  /// The line as written (decoded JSON, "note" included): what plan lists and reports
+  /// describe (app/plan_text.hpp). Never read by execution.
+  nlohmann::json source;
 };
 
 struct Session {

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sutura/app/plan.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/session.hpp"
 #include "sutura/app/workspace.hpp"
@@ -42,6 +43,8 @@ class SessionRunner {
 
   [[nodiscard]] const Workspace& workspace() const;
   [[nodiscard]] const ReplayOptions& options() const;
+  /// The steps of the plan so far (plan.hpp), undone ones included. O(steps) copy.
+  [[nodiscard]] Plan plan() const;
   /// options.time_limit has been reached: the action that was running stopped (its error says
   /// where) or the next one was not run.
   [[nodiscard]] bool stopped() const;

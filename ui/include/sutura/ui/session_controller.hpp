@@ -87,6 +87,8 @@ class SessionController {
   /// The objects; only while !busy(). revision() increments after every change.
   [[nodiscard]] const app::Workspace& workspace() const { return runner_.workspace(); }
   [[nodiscard]] std::uint64_t revision() const { return revision_; }
+  /// The plan's steps (app::SessionRunner::plan); only while !busy().
+  [[nodiscard]] app::Plan plan() const { return runner_.plan(); }
   [[nodiscard]] const SessionRecorder& recorder() const { return recorder_; }
   [[nodiscard]] const app::ReplayOptions& options() const { return runner_.options(); }
 
