@@ -107,8 +107,16 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
             return fail("the point is behind the camera");
           px[0] += host.view_left;
         } else {
-          const auto c = host.state.widgets.centre(s["click_widget"].get<std::string>());
+          const std::string label = s["click_widget"].get<std::string>();
+          const auto c = host.state.widgets.centre(label);
           if (!c) return fail("no such widget on screen");
+          if (phase_ == 0 && !host.state.widgets.visible(label)) {
+            // Scrolled out of its window: scroll to it first, as a user would, then click.
+            if (++scroll_frames_ > kMaxScrollFrames) return fail("the widget stays scrolled out of view");
+            host.state.widgets.scroll_into_view(label);
+            return;  // a frame draws the window scrolled
+          }
+          scroll_frames_ = 0;
           px = {c->x, c->y};
         }
         finished = click_at(host, px[0], px[1]);

@@ -7,7 +7,8 @@
 //   {"move": [x, y]}                   pointer to window pixel (top-left origin)
 //   {"move_world": [x, y, z]}          pointer to where a world point shows now
 //   {"click": [x, y]} / {"click_world": [x, y, z]} / {"click_widget": "label"}
-//                                      move there, press and release the left button
+//                                      move there, press and release the left button (a
+//                                      widget scrolled out of its window is scrolled into view first)
 //   {"scroll": N}                      N wheel steps at the pointer (positive: towards)
 //   {"key": "enter" | "escape" | "f" | "z" | "y", "ctrl": bool}   press and release
 //   {"type": "text"}                   characters into the focused text field
@@ -61,6 +62,8 @@ class ScriptPlayer {
   std::size_t next_ = 0;
   int phase_ = 0;          ///< progress within a multi-frame step
   int frames_left_ = 0;
+  int scroll_frames_ = 0;  ///< frames spent scrolling a click_widget's widget into view
+  static constexpr int kMaxScrollFrames = 5;
   double timed_seconds_ = 0.0;
   std::optional<std::string> failure_;
 };

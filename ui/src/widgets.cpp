@@ -6,16 +6,31 @@ namespace sutura::ui {
 
 void WidgetRegistry::note(const std::string& label) {
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-  current_[label] = ImVec4(a.x, a.y, b.x, b.y);
+  const ImVec2 c(0.5f * (a.x + b.x), 0.5f * (a.y + b.y));
+  const ImVec2 lo = ImGui::GetWindowDrawList()->GetClipRectMin(), hi = ImGui::GetWindowDrawList()->GetClipRectMax();
+  const bool visible = c.x >= lo.x && c.x <= hi.x && c.y >= lo.y && c.y <= hi.y;
+  current_[label] = {ImVec4(a.x, a.y, b.x, b.y), visible};
+  if (!visible && label == scroll_to_) ImGui::SetScrollHereY(0.5f);
+  if (label == scroll_to_) scroll_to_.clear();
 }
 
 std::optional<ImVec2> WidgetRegistry::centre(const std::string& label) const {
   for (const auto* map : {&current_, &previous_}) {
     const auto it = map->find(label);
-    if (it != map->end())
-      return ImVec2(0.5f * (it->second.x + it->second.z), 0.5f * (it->second.y + it->second.w));
+    if (it != map->end()) {
+      const ImVec4& r = it->second.rect;
+      return ImVec2(0.5f * (r.x + r.z), 0.5f * (r.y + r.w));
+    }
   }
   return std::nullopt;
+}
+
+bool WidgetRegistry::visible(const std::string& label) const {
+  for (const auto* map : {&current_, &previous_}) {
+    const auto it = map->find(label);
+    if (it != map->end()) return it->second.visible;
+  }
+  return false;
 }
 
 void WidgetRegistry::new_frame() {

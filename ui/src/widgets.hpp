@@ -16,11 +16,21 @@ class WidgetRegistry {
   void note(const std::string& label);
   /// Centre of the widget drawn with `label` in the last frame, if any.
   [[nodiscard]] std::optional<ImVec2> centre(const std::string& label) const;
+  /// The centre of that widget was inside its window's visible area (not scrolled away).
+  [[nodiscard]] bool visible(const std::string& label) const;
+  /// The next time `label` is drawn scrolled out of view, its window scrolls to it (as a
+  /// user scrolls to a button below the fold before clicking it).
+  void scroll_into_view(const std::string& label) { scroll_to_ = label; }
   /// Forgets widgets not drawn since the previous call (call once per frame, before drawing).
   void new_frame();
 
  private:
-  std::map<std::string, ImVec4> current_, previous_;
+  struct Drawn {
+    ImVec4 rect;   ///< min x, min y, max x, max y
+    bool visible;  ///< the centre lay within the window's clip rectangle
+  };
+  std::map<std::string, Drawn> current_, previous_;
+  std::string scroll_to_;
 };
 
 /// A button that is disabled when `why_not` holds a reason, which then shows as its tooltip
