@@ -16,6 +16,7 @@
 #include "resect_preview.hpp"
 #include "op_builders.hpp"
 #include "scene_picker.hpp"
+#include "sutura/app/patch_preview.hpp"
 #include "sutura/ui/orbit_camera.hpp"
 #include "sutura/ui/session_controller.hpp"
 #include "sutura/ui/stage.hpp"
@@ -196,6 +197,11 @@ struct GuiState {
   std::string centreline_error;
   std::uint64_t centreline_revision = ~std::uint64_t(0);
   std::size_t centreline_object = 0;
+  /// The Patch tool's preview of the patch op it would record now (patch_preview_key: that
+  /// op and the workspace revision), or why it cannot be added (patch_preview_error).
+  app::PatchPreview patch_preview;
+  std::string patch_preview_error;
+  std::string patch_preview_key;
   /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
   ResectPreview resect_preview;
   std::string resect_preview_key;

@@ -172,6 +172,30 @@ void suture_controls(GuiState& s) {
   if (ImGui::Button("Cancel##suture")) cancel_draft(s);
 }
 
+// Brings the patch preview up to date for `op` (nullopt: no patch drafted) on the workspace now.
+void refresh_patch_preview(GuiState& s, const std::optional<json>& op) {
+  if (!op) {
+    s.patch_preview = {};
+    s.patch_preview_error.clear();
+    s.patch_preview_key.clear();
+    return;
+  }
+  const std::string key = op->dump() + "@" + std::to_string(s.controller.revision());
+  if (key == s.patch_preview_key) return;
+  s.patch_preview_key = key;
+  s.patch_preview = {};
+  s.patch_preview_error.clear();
+  try {
+    const app::Action action = app::parse_action(*op, s.controller.recorder().file(), s.controller.recorder().lines() + 1);
+    s.patch_preview = app::preview_patch(*s.selected(), std::get<app::PatchOp>(action.op),
+                                         s.controller.options().limits.faces_per_object);
+  } catch (const app::SessionError& e) {
+    s.patch_preview_error = e.what();
+  } catch (const std::exception& e) {
+    s.patch_preview_error = e.what();
+  }
+}
+
 void patch_controls(GuiState& s) {
   static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
   static const char* kShapeUse[] = {"an incision inside the wall (patch aortoplasty)",
@@ -190,19 +214,30 @@ void patch_controls(GuiState& s) {
   s.widgets.note("patch thickness [mm]");
   ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
                      s.patch.ends.size());
-  const std::optional<std::string> why =
-      s.patch.ends.size() < 2 ? std::optional<std::string>("Click both incision ends first.") : std::nullopt;
-  if (gated_button(s.widgets, "Add patch", why) && s.selected()) {
-    const json material = {{"youngs_modulus", as_typed(s.patch.youngs_modulus)},
-                           {"poisson_ratio", as_typed(s.patch.poisson_ratio)},
-                           {"thickness", as_typed(s.patch.thickness)}};
+  const json material = {{"youngs_modulus", as_typed(s.patch.youngs_modulus)},
+                         {"poisson_ratio", as_typed(s.patch.poisson_ratio)},
+                         {"thickness", as_typed(s.patch.thickness)}};
+  std::optional<json> op;
+  if (s.patch.ends.size() == 2 && s.selected())
+    op = patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0], s.patch.ends[1],
+                  as_typed(s.patch.width), material);
+  refresh_patch_preview(s, op);
+  if (op && s.patch_preview_error.empty()) {
+    ImGui::TextWrapped("The patch as cut, outlined in blue around the incision: %.1f mm wide, %.1f mm long, %.0f mm².",
+                       s.patch_preview.width, s.patch_preview.length, s.patch_preview.area);
+  } else if (op) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.1f, 0.1f, 1.0f));
+    ImGui::TextWrapped("This patch cannot be added: %s", s.patch_preview_error.c_str());
+    ImGui::PopStyleColor();
+  }
+  std::optional<std::string> why;
+  if (!op) why = "Click both incision ends first.";
+  else if (!s.patch_preview_error.empty()) why = s.patch_preview_error;
+  if (gated_button(s.widgets, "Add patch", why) && op) {
     char done[160];
     std::snprintf(done, sizeof done, "Patch added: %s, %.1f mm wide, E %.3g MPa, %.2f mm thick",
                   kShapes[s.patch.shape], s.patch.width, s.patch.youngs_modulus, s.patch.thickness);
-    if (s.perform(patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0],
-                           s.patch.ends[1], as_typed(s.patch.width), material),
-                  done))
-      s.patch.ends.clear();
+    if (s.perform(*op, done)) s.patch.ends.clear();
   }
 }
 

@@ -165,7 +165,12 @@ Overlays viewport_overlays(const GuiState& s) {
       for (const auto& ends : p.meeting_ends) line({ends[0], ends[1]}, {0.35f, 0.35f, 0.35f}, 2.5f);
       markers(s.suture.clicks, {0.05f, 0.35f, 0.1f}, 10.0f);
     }
-    if (s.tool == Tool::Patch) markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
+    if (s.tool == Tool::Patch) {
+      // The preview is brought up to date by the panel, drawn before the view.
+      if (s.patch.ends.size() == 2 && !s.patch_preview.outline.empty())
+        line(s.patch_preview.outline, {0.1f, 0.3f, 0.9f}, 3.0f);
+      markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
+    }
     if (s.tool == Tool::Remesh) markers(s.remesh.points, {0.6f, 0.2f, 0.8f}, 10.0f);
     if (s.tool == Tool::Resect && !s.resect.clicks.empty()) {
       // The preview is brought up to date by the panel, drawn before the view.
