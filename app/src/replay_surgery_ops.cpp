@@ -11,6 +11,7 @@
 
 #include "replay_run.hpp"
 #include "sutura/app/report.hpp"
+#include "sutura/app/section.hpp"
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
@@ -544,10 +545,7 @@ json Run::execute(const MeasureOp& op) {
   json j = {{"object", op.object}};
   const double radius = op.max_radius > 0 ? op.max_radius : std::numeric_limits<double>::infinity();
   if (op.plane) {
-    engine::CrossSectionParams p;
-    p.max_radius = radius;
-    const engine::CrossSection before = engine::cross_section(obj.before, *op.plane, p);
-    const engine::CrossSection after = engine::cross_section(obj.mesh, *op.plane, p);
+    const auto [before, after] = measure_section(obj, *op.plane, op.max_radius);
     j["before"] = section_json(before);
     j["after"] = section_json(after);
     j["area_change_percent"] = 100.0 * (after.area - before.area) / before.area;

@@ -68,6 +68,23 @@ void GuiState::error(std::string text) {
   ++messages_posted;
 }
 
+const engine::CentrelineTree* GuiState::selected_centreline() {
+  const app::SceneObject* obj = selected();
+  if (obj == nullptr) return nullptr;
+  if (centreline_revision != controller.revision() || centreline_object != object) {
+    centreline.reset();
+    centreline_error.clear();
+    try {
+      centreline = engine::extract_centreline(obj->mesh);
+    } catch (const std::exception& e) {
+      centreline_error = e.what();
+    }
+    centreline_revision = controller.revision();
+    centreline_object = object;
+  }
+  return centreline ? &*centreline : nullptr;
+}
+
 bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {
   const ActionOutcome r = controller.run(op);
   if (!r.ok) {

@@ -17,6 +17,7 @@
 #include "op_builders.hpp"
 #include "scene_picker.hpp"
 #include "sutura/app/patch_preview.hpp"
+#include "sutura/app/section.hpp"
 #include "sutura/ui/orbit_camera.hpp"
 #include "sutura/ui/session_controller.hpp"
 #include "sutura/ui/stage.hpp"
@@ -160,7 +161,21 @@ struct GuiState {
   /// The Cross-section controls are open: only then is the plane drawn over the view (a tool,
   /// not part of the plan: snapshots do not show it).
   bool section_controls_open = false;
-  int plane_axis = 2;  ///< 0 x, 1 y, 2 z: normal of the cross-section plane
+  /// The cross-section plane's normal: 0 x, 1 y, 2 z; 3 across the vessel (perpendicular to
+  /// its automatic centreline at plane_origin, through the lumen's middle there).
+  int plane_axis = 3;
+  /// The plane the Cross-section controls would measure (for plane_origin and plane_axis on
+  /// the workspace at section_plane_key) and its half-size as drawn in the view, or why
+  /// there is none (section_error).
+  std::optional<engine::Plane> section_plane;
+  double section_extent = 0.0;
+  std::string section_error;
+  std::string section_plane_key;
+  /// The last measured section's outlines before and after, and its plane (the section
+  /// view), while the workspace is still at last_section_revision (dropped after a change).
+  std::optional<app::SectionPair> last_section;
+  engine::Plane last_section_plane;
+  std::uint64_t last_section_revision = 0;
   nlohmann::json last_measure;
   /// Lumen profile: the open ends (boundary loops of the selected object, in loop order) it
   /// runs between, and the last profile's report details (null: none yet).
@@ -191,8 +206,7 @@ struct GuiState {
   /// the picker): a run is refused or warned about, and the view marks them.
   ElementCheck element_check;
   std::uint64_t element_check_revision = ~std::uint64_t(0);
-  /// The selected object's automatic centreline for the Resect tool, computed on first use
-  /// at revision centreline_revision (nullopt with centreline_error when it cannot be made).
+  /// selected_centreline(): made at revision centreline_revision for object centreline_object.
   std::optional<engine::CentrelineTree> centreline;
   std::string centreline_error;
   std::uint64_t centreline_revision = ~std::uint64_t(0);
@@ -234,6 +248,10 @@ struct GuiState {
   /// The stage gate for `a`, else missing_op(op) when op is non-empty.
   [[nodiscard]] std::optional<std::string> why_not(Action a, const std::string& op = {}) const;
   [[nodiscard]] const app::SceneObject* selected() const;
+  /// The selected object's automatic centreline (engine::extract_centreline of its current
+  /// shape), made once per workspace revision and object; nullptr (centreline_error says why)
+  /// when there is no object or it cannot be made. Not while the controller is busy.
+  const engine::CentrelineTree* selected_centreline();
   /// The camera the view shows: the orbit camera, backed off twice as far side by side (each
   /// half is half as wide, so the same objects still fit across it).
   [[nodiscard]] render::Camera shown_camera() const;

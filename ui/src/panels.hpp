@@ -11,6 +11,8 @@ void workflow_window(GuiState& s);
 void plan_section(GuiState& s);
 void simulate_section(GuiState& s);
 void inspect_section(GuiState& s);
+/// Inspect > Cross-section: the plane's placement, the measure op, and the section view.
+void cross_section_controls(GuiState& s);
 /// The plan list (in the Plan section): every step that changed the workspace, in words;
 /// the selected one shows what was recorded and what it did, and the last can be undone.
 void plan_steps(GuiState& s);

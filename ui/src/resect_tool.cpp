@@ -9,22 +9,6 @@ namespace sutura::ui {
 
 namespace {
 
-// The selected object's centreline, made once per workspace revision and object.
-const engine::CentrelineTree* centreline(GuiState& s, const app::SceneObject& obj) {
-  if (s.centreline_revision != s.controller.revision() || s.centreline_object != s.object) {
-    s.centreline.reset();
-    s.centreline_error.clear();
-    try {
-      s.centreline = engine::extract_centreline(obj.mesh);
-    } catch (const std::exception& e) {
-      s.centreline_error = e.what();
-    }
-    s.centreline_revision = s.controller.revision();
-    s.centreline_object = s.object;
-  }
-  return s.centreline ? &*s.centreline : nullptr;
-}
-
 // Brings s.resect_preview up to date with the clicks, the reach and the workspace.
 void refresh_preview(GuiState& s, const app::SceneObject& obj, const engine::CentrelineTree& tree) {
   std::string key = std::to_string(s.controller.revision()) + "/" + std::to_string(s.object) + "/";
@@ -47,7 +31,7 @@ void resect_controls(GuiState& s) {
                      "vessel, perpendicular to its centreline. Two cuts remove the band between "
                      "them (a third click starts again).");
   const app::SceneObject* obj = s.selected();
-  const engine::CentrelineTree* tree = obj ? centreline(s, *obj) : nullptr;
+  const engine::CentrelineTree* tree = obj ? s.selected_centreline() : nullptr;
   if (obj && !tree) ImGui::TextWrapped("The cuts follow the vessel's centreline, which cannot be made: %s",
                                        s.centreline_error.c_str());
   if (tree) {
@@ -83,7 +67,7 @@ void resect_controls(GuiState& s) {
 void commit_resection(GuiState& s) {
   const app::SceneObject* obj = s.selected();
   // The preview of these clicks on this mesh (the panel that refreshes it may be collapsed).
-  const engine::CentrelineTree* tree = obj ? centreline(s, *obj) : nullptr;
+  const engine::CentrelineTree* tree = obj ? s.selected_centreline() : nullptr;
   if (tree) refresh_preview(s, *obj, *tree);
   if (s.tool != Tool::Resect || !tree || s.resect.clicks.size() < 2 || s.resect_preview.planes.size() < 2 ||
       !s.resect_preview.error.empty()) {

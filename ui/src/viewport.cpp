@@ -211,16 +211,23 @@ Overlays viewport_overlays(const GuiState& s) {
     for (const auto& t : s.element_check.warned) markers(t.where, {1.0f, 0.55f, 0.0f}, 7.0f);
   }
   if (s.hover) markers({s.hover->hit.point}, {0.05f, 0.05f, 0.05f}, 8.0f);
-  if (s.stages.stage() == Stage::Inspect && s.section_controls_open && s.plane_origin && obj) {
-    // The cross-section plane as a square outline around its origin.
-    const double r = 0.6 * obj->mesh.bounds().diagonal().norm() / 2.0;
-    engine::Vec3 n = engine::Vec3::Zero();
-    n[s.plane_axis] = 1.0;
-    const engine::Vec3 u = n.unitOrthogonal(), v = n.cross(u);
-    const engine::Vec3& c = *s.plane_origin;
-    line({c + r * (u + v), c + r * (u - v), c - r * (u + v), c - r * (u - v), c + r * (u + v)},
-         {0.1f, 0.4f, 0.9f}, 2.5f);
-    markers({c}, {0.1f, 0.4f, 0.9f}, 10.0f);
+  if (s.stages.stage() == Stage::Inspect && s.section_controls_open && obj) {
+    // The plane as a square outline around its origin (brought up to date by the panel), and
+    // the last measured section's outline now.
+    if (s.section_plane) {
+      const double r = s.section_extent;
+      const engine::Vec3 n = s.section_plane->normal.normalized();
+      const engine::Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+      const engine::Vec3& c = s.section_plane->origin;
+      line({c + r * (u + v), c + r * (u - v), c - r * (u + v), c - r * (u - v), c + r * (u + v)},
+           {0.1f, 0.4f, 0.9f}, 2.5f);
+      markers({c}, {0.1f, 0.4f, 0.9f}, 10.0f);
+    }
+    if (s.last_section && !s.last_section->after.points.empty()) {
+      std::vector<engine::Vec3> outline = s.last_section->after.points;
+      if (s.last_section->after.closed) outline.push_back(outline.front());
+      line(outline, {0.9f, 0.47f, 0.08f}, 3.0f);
+    }
   }
   return o;
 }
