@@ -276,6 +276,7 @@ int run_gui(const GuiOptions& options) {
   auto last = std::chrono::steady_clock::now();
   double frame_seconds = 0.0;
   int idle_frames = 0;
+  std::uint64_t news_drawn = controller.news();
   while (!s.quit) {
     // Draw continuously only while something happens: a running op gets the CPU (the view
     // follows it at up to 10 frames per second), an idle window waits for input.
@@ -289,6 +290,13 @@ int run_gui(const GuiOptions& options) {
       s.quit_requested = true;
       if (s.unsaved_work().empty()) s.quit = true;  // also when minimised (no frame to ask in)
     }
+    // While an op runs, a frame is drawn only when there is something new to show (input,
+    // the run's progress or shape, its end) or every half second (the time and estimate).
+    if (controller.busy() && input.empty() && controller.news() == news_drawn &&
+        std::chrono::steady_clock::now() - last < std::chrono::milliseconds(500) &&
+        (!script || script->waiting_for_idle()))
+      continue;
+    news_drawn = controller.news();
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
     glfwGetWindowSize(glfw, &width, &height);
     glfwGetFramebufferSize(glfw, &fb_width, &fb_height);

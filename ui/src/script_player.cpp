@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 
@@ -58,6 +59,7 @@ bool ScriptPlayer::click_at(ScriptHost& host, float x, float y) {
       e.button = 0;
       e.pressed = phase_ == 2;
       host.input.push(e);
+      released_ = std::chrono::steady_clock::now();
       return false;
     default:
       return true;  // the release frame has run
@@ -120,6 +122,13 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           px = {c->x, c->y};
         }
         finished = click_at(host, px[0], px[1]);
+        if (finished && s.value("timed", false)) {
+          // From the release to this step: the frame that handled the click has been drawn
+          // and presented, and the next one's events polled.
+          std::printf("click response %.1f ms\n",
+                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - released_).count());
+          std::fflush(stdout);
+        }
       } else if (s.contains("key")) {
         static const std::map<std::string, int> kKeys = {
             {"enter", GLFW_KEY_ENTER}, {"escape", GLFW_KEY_ESCAPE}, {"f", GLFW_KEY_F},

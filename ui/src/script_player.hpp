@@ -8,7 +8,9 @@
 //   {"move_world": [x, y, z]}          pointer to where a world point shows now
 //   {"click": [x, y]} / {"click_world": [x, y, z]} / {"click_widget": "label"}
 //                                      move there, press and release the left button (a
-//                                      widget scrolled out of its window is scrolled into view first)
+//                                      widget scrolled out of its window is scrolled into view first);
+//                                      with "timed": true, prints the time from the release until
+//                                      the frame that handled it has been presented
 //   {"scroll": N}                      N wheel steps at the pointer (positive: towards)
 //   {"key": "enter" | "escape" | "f" | "z" | "y", "ctrl": bool}   press and release
 //   {"type": "text"}                   characters into the focused text field
@@ -20,6 +22,7 @@
 //       effect and some step's words (app::describe_action) contain the text
 //   {"time_frames": N}                 print the mean frame time of the next N frames
 //   {"quit": true}                     as closing the window (asks first when work would be lost)
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -50,6 +53,9 @@ class ScriptPlayer {
   /// Runs this frame's part of the script. `frame_seconds` is the last frame's duration.
   void step(ScriptHost& host, double frame_seconds);
   [[nodiscard]] bool done() const { return next_ >= steps_.size() || failure_.has_value(); }
+  /// The current step waits for the running op to end (wait_idle): frames with nothing new
+  /// may be skipped meanwhile, as for a user who watches.
+  [[nodiscard]] bool waiting_for_idle() const { return !done() && steps_[next_].contains("wait_idle"); }
   /// Steps not finished yet, the one in progress included.
   [[nodiscard]] std::size_t steps_left() const { return next_ < steps_.size() ? steps_.size() - next_ : 0; }
   [[nodiscard]] const std::optional<std::string>& failure() const { return failure_; }
@@ -62,6 +68,7 @@ class ScriptPlayer {
   std::size_t next_ = 0;
   int phase_ = 0;          ///< progress within a multi-frame step
   int frames_left_ = 0;
+  std::chrono::steady_clock::time_point released_;  ///< when the last click's release was queued
   int scroll_frames_ = 0;  ///< frames spent scrolling a click_widget's widget into view
   static constexpr int kMaxScrollFrames = 5;
   double timed_seconds_ = 0.0;

@@ -32,6 +32,7 @@ bool SessionController::on_progress(const app::RunProgress& p) {
   live_.positions.clear();
   for (const auto& [name, x] : p.positions) live_.positions.emplace_back(name, std::vector(x.begin(), x.end()));
   ++live_.positions_revision;
+  ++news_;
   // Pause: the solver waits here, between steps, until resumed or cancelled.
   resume_.wait(lock, [this] { return !paused_ || cancel_.load(); });
   return !cancel_.load();
@@ -101,6 +102,7 @@ bool SessionController::start(const json& op, std::string& why) {
   worker_ = std::thread([this, a = *action] {
     worker_outcome_ = execute(a, *worker_checkpoint_);
     worker_done_ = true;
+    ++news_;
   });
   return true;
 }

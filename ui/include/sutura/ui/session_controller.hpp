@@ -83,6 +83,9 @@ class SessionController {
   /// finished but before poll() took its outcome: nothing that follows it should start).
   [[nodiscard]] bool cancel_requested() const { return cancel_.load(); }
   [[nodiscard]] LiveProgress progress() const;
+  /// Counts what running ops have reported (each progress update, each end): while it stands
+  /// still there is nothing new to draw. O(1), any thread.
+  [[nodiscard]] std::uint64_t news() const { return news_.load(); }
 
   /// The objects; only while !busy(). revision() increments after every change.
   [[nodiscard]] const app::Workspace& workspace() const { return runner_.workspace(); }
@@ -108,6 +111,7 @@ class SessionController {
   std::optional<ActionOutcome> worker_outcome_;  ///< set by the worker before it ends
   std::atomic<bool> worker_done_{false};
   std::atomic<bool> cancel_{false};
+  std::atomic<std::uint64_t> news_{0};
   mutable std::mutex mutex_;
   std::condition_variable resume_;
   bool paused_ = false;
