@@ -9,10 +9,7 @@ SessionController::SessionController(SessionRecorder recorder, app::ReplayOption
       runner_(recorder_.file(), "recorded by sutura gui", with_hook(std::move(options))) {}
 
 SessionController::~SessionController() {
-  if (worker_.joinable()) {
-    cancel();
-    worker_.join();
-  }
+  if (running_) cancel();  // the OpThread's destructor then waits for the op to stop
 }
 
 app::ReplayOptions SessionController::with_hook(app::ReplayOptions options) {
@@ -39,7 +36,9 @@ bool SessionController::on_progress(const app::RunProgress& p) {
 }
 
 void SessionController::replay_existing(const app::Session& session) {
-  for (const auto& a : session.actions) runner_.execute(a);
+  ops_.run([&] {
+    for (const auto& a : session.actions) runner_.execute(a);
+  });
   ++revision_;
 }
 
@@ -78,7 +77,7 @@ ActionOutcome SessionController::run(const json& op) {
   const auto action = record(op, outcome);
   if (!action) return outcome;
   const auto before = runner_.checkpoint();
-  outcome = execute(*action, *before);
+  ops_.run([&] { outcome = execute(*action, *before); });
   ++revision_;
   return outcome;
 }
@@ -99,7 +98,8 @@ bool SessionController::start(const json& op, std::string& why) {
     live_ = LiveProgress{};
     live_.op = action->name;
   }
-  worker_ = std::thread([this, a = *action] {
+  running_ = true;
+  ops_.post([this, a = *action] {
     worker_outcome_ = execute(a, *worker_checkpoint_);
     worker_done_ = true;
     ++news_;
@@ -108,14 +108,17 @@ bool SessionController::start(const json& op, std::string& why) {
 }
 
 std::optional<ActionOutcome> SessionController::poll() {
-  if (!worker_.joinable() || !worker_done_.load()) return std::nullopt;
-  worker_.join();
+  if (!running_ || !worker_done_.load()) return std::nullopt;
+  ops_.wait();
+  running_ = false;
   worker_checkpoint_.reset();
   ++revision_;
   return std::exchange(worker_outcome_, std::nullopt);
 }
 
-void SessionController::write_report() { runner_.write_report(runner_.report("ok")); }
+void SessionController::write_report() {
+  ops_.run([this] { runner_.write_report(runner_.report("ok")); });
+}
 
 void SessionController::set_paused(bool paused) {
   {

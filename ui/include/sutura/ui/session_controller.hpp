@@ -5,9 +5,11 @@
 // restored to its checkpoint, line removed from the file), so the file always replays to
 // what the window shows.
 //
-// Long ops (simulate, solve) run on a worker thread; the main thread keeps drawing, reads
-// the progress and live positions, and may pause, resume or cancel. While the worker runs,
-// workspace() must not be read and no other op may start (busy() is true).
+// Every op runs on one long-lived op thread (op_thread.hpp: the same warm thread for all, as
+// a headless replay runs all on one). run() and replay_existing() wait for it; long ops
+// (simulate, solve) are start()ed and the main thread keeps drawing, reads the progress and
+// live positions, and may pause, resume or cancel. While such an op runs, workspace() must
+// not be read and no other op may start (busy() is true).
 #include <atomic>
 #include <condition_variable>
 #include <filesystem>
@@ -22,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sutura/app/session_runner.hpp"
+#include "sutura/ui/op_thread.hpp"
 #include "sutura/ui/session_recorder.hpp"
 
 namespace sutura::ui {
@@ -76,7 +79,7 @@ class SessionController {
   /// recorded file writes, timings aside). Must not be called while busy(). Throws on I/O errors.
   void write_report();
 
-  [[nodiscard]] bool busy() const { return worker_.joinable(); }
+  [[nodiscard]] bool busy() const { return running_; }
   void set_paused(bool paused);
   void cancel();  ///< asks the running op to stop; poll() then reports it cancelled
   /// cancel() was called since the last op started (also when it came after the op had
@@ -106,7 +109,7 @@ class SessionController {
   app::SessionRunner runner_;
   std::uint64_t revision_ = 0;
 
-  std::thread worker_;
+  bool running_ = false;  ///< a start()ed op has not been poll()ed yet
   std::shared_ptr<const app::SessionRunner::Checkpoint> worker_checkpoint_;
   std::optional<ActionOutcome> worker_outcome_;  ///< set by the worker before it ends
   std::atomic<bool> worker_done_{false};
@@ -116,6 +119,7 @@ class SessionController {
   std::condition_variable resume_;
   bool paused_ = false;
   LiveProgress live_;
+  OpThread ops_;  ///< last: destroyed first, waiting for an op that still runs
 };
 
 }  // namespace sutura::ui

@@ -1,0 +1,43 @@
+#pragma once
+// One long-lived thread on which the session controller runs every op, one job at a time.
+// Why one thread for all of them, rather than a new thread per long op: an op run on a fresh
+// thread allocates every buffer of its solve from that thread's new, empty malloc arena
+// (new memory, faulted in page by page). The coarse arch's relaxation took 0.72 s on a fresh
+// thread against 0.65 s on the thread that had run the session before it
+// (docs/performance.md, GUI).
+#include <condition_variable>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+namespace sutura::ui {
+
+class OpThread {
+ public:
+  OpThread();
+  ~OpThread();  ///< waits for the job in hand, then ends the thread
+  OpThread(const OpThread&) = delete;
+  OpThread& operator=(const OpThread&) = delete;
+
+  /// Starts `job` on the thread and returns at once. Only when idle(). The job must not throw.
+  void post(std::function<void()> job);
+  /// Waits until the job posted last has returned (at once when idle()).
+  void wait();
+  /// Runs `job` on the thread and waits for it; an exception it throws is rethrown here.
+  void run(const std::function<void()>& job);
+  /// No job posted and not yet waited for.
+  [[nodiscard]] bool idle() const;
+
+ private:
+  void loop();
+
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::function<void()> job_;  ///< the job to run; empty when none is waiting
+  bool busy_ = false;          ///< a job was posted and has not returned yet
+  bool stop_ = false;
+  std::thread thread_;         ///< last: starts once the members above exist
+};
+
+}  // namespace sutura::ui
