@@ -4,6 +4,7 @@
 // first response to clicks on the coarse and fine arch; and the same relaxation from the
 // window's Simulate and replayed headlessly. Needs an X display: under Xvfb run
 //   xvfb-run -s "-screen 0 1600x1000x24" build/tests/bench/bench_gui
+// `bench_gui --relaxation-only` runs only the last comparison on the coarse arch, 5 pairs.
 // Prints a table; targets (docs/performance.md): picking < 5 ms, >= 30 frames per second,
 // a click answered within 50 ms, the window's relaxation within 10 % of the headless one.
 #include <algorithm>

@@ -367,7 +367,6 @@ int run_gui(const GuiOptions& options) {
       glfwSetCursor(glfw, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
     }
 
-    window.make_current();  // snapshots render off-screen and leave OSMesa current
     try {
       const int x0 = framebuffer_x(s.view_left, width, fb_width);
       draw_view(s, renderer, x0, fb_width - x0, fb_height);

@@ -259,8 +259,8 @@ struct GuiState {
   void info(std::string text);
   void error(std::string text);
   /// Records and runs `op` now (SessionController::run); reports the outcome as a message.
-  /// True on success. The caller's GL context may have changed (snapshots render
-  /// off-screen): the frame loop makes the window current again before drawing.
+  /// True on success. (A snapshot op renders off-screen on the op thread: the window's GL
+  /// context stays current on this one.)
   bool perform(const nlohmann::json& op, const std::string& done_text = {});
 };
 
