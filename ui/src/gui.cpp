@@ -209,31 +209,53 @@ void view_captions(const GuiState& s, float view_width) {
   }
 }
 
+// A controller for a window on `session` (empty: none): recording to `record` (empty: a new
+// file in the output directory), which starts as a copy of the session and continues it; the
+// session itself is never written. Throws when the session cannot be read or replayed (the
+// new recording then holds the copy).
+std::unique_ptr<SessionController> open_controller(const GuiOptions& options, const fs::path& session,
+                                                   const fs::path& record) {
+  std::optional<app::Session> existing;
+  if (!session.empty()) existing = app::load_session(session);
+  const auto start = [&](const fs::path& file) {
+    return existing ? SessionRecorder::continue_in(session, file)
+                    : SessionRecorder::create(file, "recorded by sutura gui");
+  };
+  SessionRecorder recorder = record.empty() ? record_new_session(options.out_dir, start) : start(record);
+  app::ReplayOptions replay_options;
+  replay_options.out_dir = options.out_dir;
+  if (existing) replay_options.protected_inputs.push_back(session);
+  replay_options.threads = options.threads;
+  auto controller = std::make_unique<SessionController>(std::move(recorder), replay_options);
+  if (existing) controller->replay_existing(*existing);
+  return controller;
+}
+
+// Ends what `controller` runs and writes its report.json.
+void close_controller(SessionController& controller) {
+  if (controller.busy()) controller.cancel();
+  while (controller.busy() && !controller.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  try {
+    controller.write_report();
+  } catch (const std::exception& e) {
+    std::cerr << "sutura: error: writing the report: " << e.what() << "\n";
+  }
+}
+
+void start_session(GuiState& s) {
+  if (!s.controller.workspace().objects().empty()) s.stages.mesh_loaded();
+  s.info("Recording to " + s.controller.recorder().file().string());
+}
+
 }  // namespace
 
 int run_gui(const GuiOptions& options) {
-  // Recording: always a new file (--record, or one in the output directory); a session opened
-  // is copied into it first and continues there, itself never written.
-  std::optional<app::Session> existing;
-  if (!options.session.empty()) existing = app::load_session(options.session);
-  const auto start = [&](const fs::path& file) {
-    return existing ? SessionRecorder::continue_in(options.session, file)
-                    : SessionRecorder::create(file, "recorded by sutura gui");
-  };
-  std::optional<SessionRecorder> recorder;
-  recorder.emplace(options.record.empty() ? record_new_session(options.out_dir, start) : start(options.record));
-  app::ReplayOptions replay_options;
-  replay_options.out_dir = options.out_dir;
-  if (existing) replay_options.protected_inputs.push_back(options.session);
-  replay_options.threads = options.threads;
-  SessionController controller(std::move(*recorder), replay_options);
-  if (existing) {
-    try {
-      controller.replay_existing(*existing);
-    } catch (const std::exception& e) {
-      std::cerr << "sutura: error: " << e.what() << "\n";
-      return 1;
-    }
+  std::unique_ptr<SessionController> controller;
+  try {
+    controller = open_controller(options, options.session, options.record);
+  } catch (const std::exception& e) {
+    std::cerr << "sutura: error: " << e.what() << "\n";
+    return 1;
   }
   std::optional<ScriptPlayer> script;
   if (!options.script.empty()) script.emplace(options.script);
@@ -266,9 +288,9 @@ int run_gui(const GuiOptions& options) {
 
   InputQueue input;
   input.attach(glfw);
-  GuiState s(controller);
-  if (!controller.workspace().objects().empty()) s.stages.mesh_loaded();
-  s.info("Recording to " + controller.recorder().file().string());
+  std::optional<GuiState> state;
+  state.emplace(*controller);
+  start_session(*state);
 
   std::optional<fs::path> screenshot_to;
   int exit_code = 0;
@@ -276,11 +298,37 @@ int run_gui(const GuiOptions& options) {
   auto last = std::chrono::steady_clock::now();
   double frame_seconds = 0.0;
   int idle_frames = 0;
-  std::uint64_t news_drawn = controller.news();
-  while (!s.quit) {
+  std::uint64_t news_drawn = controller->news();
+  while (!state->quit) {
+    // File > Open session, confirmed and nothing running: the window goes on with the other
+    // session; when it cannot be opened, with this one.
+    if (state->open_requested && state->open_confirmed && !controller->busy()) {
+      const fs::path file = *state->open_requested;
+      state->open_requested.reset();
+      state->open_confirmed = false;
+      try {
+        auto next = open_controller(options, file, {});
+        close_controller(*controller);
+        // The window goes on: its message history and where its widgets were drawn (a
+        // script's click in progress looks there) carry over; the rest is the new session's.
+        WidgetRegistry widgets = std::move(state->widgets);
+        std::deque<Message> messages = std::move(state->messages);
+        state.reset();
+        controller = std::move(next);
+        state.emplace(*controller);
+        state->widgets = std::move(widgets);
+        state->messages = std::move(messages);
+        state->info("Opened " + file.string());
+        start_session(*state);
+        news_drawn = controller->news();
+      } catch (const std::exception& e) {
+        state->error("Open session: " + std::string(e.what()));
+      }
+    }
+    GuiState& s = *state;
     // Draw continuously only while something happens: a running op gets the CPU (the view
     // follows it at up to 10 frames per second), an idle window waits for input.
-    if (controller.busy()) glfwWaitEventsTimeout(0.1);
+    if (controller->busy()) glfwWaitEventsTimeout(0.1);
     else if (script) glfwPollEvents();
     else if (idle_frames > 3) glfwWaitEventsTimeout(0.5);
     else glfwPollEvents();
@@ -292,11 +340,11 @@ int run_gui(const GuiOptions& options) {
     }
     // While an op runs, a frame is drawn only when there is something new to show (input,
     // the run's progress or shape, its end) or every half second (the time and estimate).
-    if (controller.busy() && input.empty() && controller.news() == news_drawn &&
+    if (controller->busy() && input.empty() && controller->news() == news_drawn &&
         std::chrono::steady_clock::now() - last < std::chrono::milliseconds(500) &&
         (!script || script->waiting_for_idle()))
       continue;
-    news_drawn = controller.news();
+    news_drawn = controller->news();
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
     glfwGetWindowSize(glfw, &width, &height);
     glfwGetFramebufferSize(glfw, &fb_width, &fb_height);
@@ -335,6 +383,7 @@ int run_gui(const GuiOptions& options) {
     try {
       menu_bar(s);
       quit_dialog(s);
+      open_dialog(s);
       s.section_controls_open = false;  // set again by the Inspect panel while they show
       workflow_window(s);
       message_window(s);
@@ -395,13 +444,7 @@ int run_gui(const GuiOptions& options) {
   glfwSetCursor(glfw, nullptr);
   for (GLFWcursor* c : cursors)
     if (c) glfwDestroyCursor(c);
-  if (controller.busy()) controller.cancel();
-  while (controller.busy() && !controller.poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  try {
-    controller.write_report();
-  } catch (const std::exception& e) {
-    std::cerr << "sutura: error: writing the report: " << e.what() << "\n";
-  }
+  close_controller(*controller);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext();
   return exit_code;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -233,6 +234,12 @@ struct GuiState {
   float scene_width = 1000.0f;
   /// A snapshot op waiting for the answer to "replace the existing file?".
   std::optional<nlohmann::json> pending_snapshot;
+  /// File > Open session: the session to go on with (replayed, then recorded to a new file in
+  /// the output directory), once open_confirmed (open_dialog(): nothing would be lost, or the
+  /// user said so) and no op runs; the frame loop switches before the next frame.
+  std::optional<std::filesystem::path> open_requested;
+  bool open_confirmed = false;
+  char open_session_path[512] = "";
   /// Quit asked for (window closed, File > Quit, a script's quit): quits at once when nothing
   /// would be lost, otherwise asks first (quit_dialog()).
   bool quit_requested = false;

@@ -14,7 +14,21 @@ constexpr StandardView kStandardViews[] = {StandardView::Anterior,     StandardV
 
 void menu_bar(GuiState& s) {
   if (!ImGui::BeginMainMenuBar()) return;
-  if (ImGui::BeginMenu("File")) {
+  const bool file_menu = ImGui::BeginMenu("File");
+  s.widgets.note("File");
+  if (file_menu) {
+    ImGui::TextUnformatted("Open session:");
+    ImGui::InputText("##open", s.open_session_path, sizeof s.open_session_path);
+    s.widgets.note("open session path");
+    if (ImGui::MenuItem("Open session")) {
+      if (s.open_session_path[0] == '\0') s.error("Open session: type the session file's path first.");
+      else s.open_requested = std::filesystem::path(s.open_session_path);
+    }
+    s.widgets.note("Open session");
+    tooltip_for_last_item("Goes on with that session in this window: it is replayed to its last state and "
+                          "recorded further in a new file in the output directory; the file itself is "
+                          "never written. This session's recording is complete as it is.");
+    ImGui::Separator();
     static char target[512] = "session_copy.jsonl";
     ImGui::TextUnformatted("Save session as:");
     ImGui::InputText("##saveas", target, sizeof target);
@@ -46,6 +60,30 @@ void menu_bar(GuiState& s) {
   ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
               s.controller.recorder().file().filename().c_str());
   ImGui::EndMainMenuBar();
+}
+
+void open_dialog(GuiState& s) {
+  if (!s.open_requested || s.open_confirmed) return;
+  const std::vector<std::string> lost = s.unsaved_work();
+  if (lost.empty()) {
+    s.open_confirmed = true;
+    return;
+  }
+  if (!ImGui::IsPopupOpen("Open another session?")) ImGui::OpenPopup("Open another session?");
+  if (ImGui::BeginPopupModal("Open another session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted("Every committed action is in the recording. Opening now loses:");
+    for (const auto& l : lost) ImGui::BulletText("%s", l.c_str());
+    if (gated_button(s.widgets, "Open anyway", std::nullopt)) {
+      s.open_confirmed = true;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (gated_button(s.widgets, "Keep planning##open", std::nullopt)) {
+      s.open_requested.reset();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
 }
 
 void quit_dialog(GuiState& s) {

@@ -19,6 +19,9 @@ void plan_steps(GuiState& s);
 /// A quit asked for: quits when nothing would be lost, otherwise a modal dialog lists what
 /// would be and offers "Quit anyway" and "Keep planning".
 void quit_dialog(GuiState& s);
+/// File > Open session asked for: confirms at once when nothing would be lost, otherwise a
+/// modal dialog lists what would be and offers "Open anyway" and "Keep planning".
+void open_dialog(GuiState& s);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
 

@@ -132,7 +132,7 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
       } else if (s.contains("key")) {
         static const std::map<std::string, int> kKeys = {
             {"enter", GLFW_KEY_ENTER}, {"escape", GLFW_KEY_ESCAPE}, {"f", GLFW_KEY_F},
-            {"z", GLFW_KEY_Z},         {"y", GLFW_KEY_Y}};
+            {"z", GLFW_KEY_Z},         {"y", GLFW_KEY_Y},         {"end", GLFW_KEY_END}};
         const auto it = kKeys.find(s["key"].get<std::string>());
         if (it == kKeys.end()) return fail("unknown key");
         const bool ctrl = s.value("ctrl", false);

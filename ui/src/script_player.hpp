@@ -12,7 +12,7 @@
 //                                      with "timed": true, prints the time from the release until
 //                                      the frame that handled it has been presented
 //   {"scroll": N}                      N wheel steps at the pointer (positive: towards)
-//   {"key": "enter" | "escape" | "f" | "z" | "y", "ctrl": bool}   press and release
+//   {"key": "enter" | "escape" | "f" | "z" | "y" | "end", "ctrl": bool}   press and release
 //   {"type": "text"}                   characters into the focused text field
 //   {"screenshot": "file.png"}         save the window as drawn this frame (path as given)
 //   {"expect": {"stage": "Plan", "objects": N, "no_errors": true}}   fail if not so
