@@ -24,6 +24,7 @@ struct SessionRunner::Impl {
   ReplayOptions options;
   detail::Run run;
   clock_type::time_point start = clock_type::now();
+  std::uint64_t changes = 0;  ///< changes()
 
   Impl(Session h, ReplayOptions o)
       : header(std::move(h)), options(std::move(o)),
@@ -81,6 +82,8 @@ json SessionRunner::execute(const Action& a) {
     run.plan.steps.push_back({a.line, a.name, a.source, details});
     run.plan.applied = run.plan.steps.size();
   }
+  if (run.remembered != remembered || std::holds_alternative<UndoOp>(a.op) || std::holds_alternative<RedoOp>(a.op))
+    ++impl_->changes;
   return details;
 }
 
@@ -93,6 +96,8 @@ Plan SessionRunner::plan() const {
   p.undoable = std::min(p.applied, impl_->run.undo_stack.size());
   return p;
 }
+
+std::uint64_t SessionRunner::changes() const { return impl_->changes; }
 
 bool SessionRunner::stopped() const { return impl_->run.stopped; }
 

@@ -2,11 +2,12 @@
 // host's surface, and the op's own error when it cannot be added.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "replay_fixture.hpp"
 #include "sutura/app/patch_preview.hpp"
 #include "sutura/app/session_runner.hpp"
 #include "sutura/engine/errors.hpp"
-#include "sutura/engine/surgery/surface_point.hpp"
 
 namespace {
 
@@ -48,8 +49,13 @@ TEST(PatchPreview, OutlineIsThePatchAsCutOnTheWallAtItsTrueSize) {
   EXPECT_EQ(p.outline.front(), p.outline.back());  // closed
   double z_min = 1e9, z_max = -1e9, y_min = 1e9, y_max = -1e9;
   for (const auto& q : p.outline) {
-    // On the wall, about the incision.
-    EXPECT_LT(sutura::engine::closest_surface_point(tube.mesh, q).distance, 1e-9);
+    // On the wall, not on the rest shape's tangent plane (which lies outside the tube: up to
+    // r = 4.28 mm at 1.5 mm from the cut). The wall is polygonal: its vertices are at r <= 4
+    // (the remeshed band's on the faces), its faces inside by at most two sagittas of their
+    // edges (0.02 mm each).
+    const double r = std::hypot(q.x(), q.y());
+    EXPECT_LE(r, 4.0 + 1e-9);
+    EXPECT_GE(r, 3.95);
     z_min = std::min(z_min, q.z()), z_max = std::max(z_max, q.z());
     y_min = std::min(y_min, q.y()), y_max = std::max(y_max, q.y());
   }

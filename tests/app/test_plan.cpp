@@ -76,6 +76,22 @@ TEST(Plan, StepsAreTheChangingActionsAndUndoRedoMoveTheirEnd) {
   EXPECT_EQ(r.after[4].steps[3].result.value("op", ""), "incise");
 }
 
+TEST(Plan, ChangesCountTheActionsThatChangedTheWorkspace) {
+  const auto dir = sutura::testing::scratch_dir("plan", "changes");
+  const auto session = sutura::app::parse_session(kSession, dir / "s.jsonl");
+  sutura::app::ReplayOptions o;
+  o.out_dir = dir / "out";
+  SessionRunner runner(session.file, session.description, o);
+  std::vector<std::uint64_t> changes;
+  for (const auto& a : session.actions) {
+    runner.execute(a);
+    changes.push_back(runner.changes());
+  }
+  // generate, fix: 1, 2; the report changes nothing; force, incise: 3, 4; undo, undo, redo:
+  // 5, 6, 7; pressure 8; undo 9.
+  EXPECT_EQ(changes, (std::vector<std::uint64_t>{1, 2, 2, 3, 4, 5, 6, 7, 8, 9}));
+}
+
 TEST(Plan, ARestoredCheckpointTakesTheSteps) {
   const auto dir = sutura::testing::scratch_dir("plan", "checkpoint");
   const auto session = sutura::app::parse_session(kSession, dir / "s.jsonl");

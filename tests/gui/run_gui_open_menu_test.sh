@@ -21,9 +21,12 @@ sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
 fail() { echo "gui open-menu test: $*" >&2; exit 1; }
 [ -s "$out/window.png" ] || fail "$out/window.png missing"
 cmp "$out/opened.jsonl" "$out/opened.orig" || fail "the opened session was written"
-# The first recording: its header and the generated strip, nothing of the uncommitted draft.
-[ "$(wc -l <"$out/first.jsonl")" -eq 2 ] || fail "first.jsonl should hold the header and one action"
+# The first recording: its header, the generated strip and its snapshot (rendered off-screen
+# before the switch: the window must still draw after it), nothing of the uncommitted draft.
+[ "$(wc -l <"$out/first.jsonl")" -eq 3 ] || fail "first.jsonl should hold the header and two actions"
 grep -q '"op":"generate"' "$out/first.jsonl" || fail "first.jsonl lacks the strip"
+grep -q '"op":"snapshot"' "$out/first.jsonl" || fail "first.jsonl lacks the snapshot"
+[ -s "$out/gui_snapshot.png" ] || fail "the first session's snapshot is missing"
 second=$(ls "$out"/session-*.jsonl)
 [ "$(echo "$second" | wc -l)" -eq 1 ] || fail "expected one new recording, found: $second"
 lines=$(wc -l <"$out/opened.orig")

@@ -33,6 +33,16 @@ TEST(OpThread, RunRethrowsAndTheThreadGoesOn) {
   EXPECT_TRUE(ops.idle());
 }
 
+TEST(OpThread, APostedJobThatThrowsIsRethrownByWait) {
+  OpThread ops;
+  ops.post([] { throw std::runtime_error("broken"); });
+  EXPECT_THROW(ops.wait(), std::runtime_error);
+  EXPECT_NO_THROW(ops.wait());  // rethrown once
+  int ran = 0;
+  ops.run([&] { ran = 1; });
+  EXPECT_EQ(ran, 1);
+}
+
 TEST(OpThread, PostReturnsAtOnceAndOneJobAtATime) {
   OpThread ops;
   std::atomic<bool> release{false}, done{false};

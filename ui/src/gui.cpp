@@ -300,29 +300,45 @@ int run_gui(const GuiOptions& options) {
   int idle_frames = 0;
   std::uint64_t news_drawn = controller->news();
   while (!state->quit) {
-    // File > Open session, confirmed and nothing running: the window goes on with the other
-    // session; when it cannot be opened, with this one.
-    if (state->open_requested && state->open_confirmed && !controller->busy()) {
-      const fs::path file = *state->open_requested;
-      state->open_requested.reset();
-      state->open_confirmed = false;
-      try {
-        auto next = open_controller(options, file, {});
-        close_controller(*controller);
-        // The window goes on: its message history and where its widgets were drawn (a
-        // script's click in progress looks there) carry over; the rest is the new session's.
-        WidgetRegistry widgets = std::move(state->widgets);
-        std::deque<Message> messages = std::move(state->messages);
-        state.reset();
-        controller = std::move(next);
-        state.emplace(*controller);
-        state->widgets = std::move(widgets);
-        state->messages = std::move(messages);
-        state->info("Opened " + file.string());
-        start_session(*state);
-        news_drawn = controller->news();
-      } catch (const std::exception& e) {
-        state->error("Open session: " + std::string(e.what()));
+    // File > Open session, confirmed: a run going on is cancelled (as quitting cancels it), a
+    // frame says what is happening (the replay blocks the window), and then the window goes on
+    // with the other session; when it cannot be opened, with this one.
+    if (state->open_requested && state->open_confirmed) {
+      if (controller->busy()) {
+        state->queued_runs.clear();
+        controller->cancel();
+        while (controller->busy() && !controller->poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        state->info("The running simulation was cancelled to open another session");
+      }
+      if (!state->open_announced) {
+        state->open_announced = true;
+        state->info("Opening " + state->open_requested->string() + ": replaying its actions");
+      } else {
+        const fs::path file = *state->open_requested;
+        state->open_requested.reset();
+        state->open_confirmed = false;
+        state->open_announced = false;
+        try {
+          auto next = open_controller(options, file, {});
+          close_controller(*controller);
+          // The window goes on: its message history and where its widgets were drawn (a
+          // script's click in progress looks there) carry over; the rest is the new session's.
+          WidgetRegistry widgets = std::move(state->widgets);
+          std::deque<Message> messages = std::move(state->messages);
+          state.reset();
+          controller = std::move(next);
+          state.emplace(*controller);
+          state->widgets = std::move(widgets);
+          state->messages = std::move(messages);
+          state->info("Opened " + file.string());
+          start_session(*state);
+          news_drawn = controller->news();
+        } catch (const std::exception& e) {
+          state->error("Open session: " + std::string(e.what()));
+        }
+        // A controller destroyed here (the old one, or the new one that failed) may have
+        // made its snapshot renderer's OSMesa context current on this thread as it went.
+        window.make_current();
       }
     }
     GuiState& s = *state;

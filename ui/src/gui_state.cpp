@@ -71,7 +71,7 @@ void GuiState::error(std::string text) {
 const engine::CentrelineTree* GuiState::selected_centreline() {
   const app::SceneObject* obj = selected();
   if (obj == nullptr) return nullptr;
-  if (centreline_revision != controller.revision() || centreline_object != object) {
+  if (centreline_revision != controller.workspace_revision() || centreline_object != object) {
     centreline.reset();
     centreline_error.clear();
     try {
@@ -79,7 +79,7 @@ const engine::CentrelineTree* GuiState::selected_centreline() {
     } catch (const std::exception& e) {
       centreline_error = e.what();
     }
-    centreline_revision = controller.revision();
+    centreline_revision = controller.workspace_revision();
     centreline_object = object;
   }
   return centreline ? &*centreline : nullptr;

@@ -173,7 +173,8 @@ struct GuiState {
   std::string section_error;
   std::string section_plane_key;
   /// The last measured section's outlines before and after, and its plane (the section
-  /// view), while the workspace is still at last_section_revision (dropped after a change).
+  /// view), with last_measure, while the workspace is still at last_section_revision
+  /// (SessionController::workspace_revision; both dropped after a change).
   std::optional<app::SectionPair> last_section;
   engine::Plane last_section_plane;
   std::uint64_t last_section_revision = 0;
@@ -217,6 +218,7 @@ struct GuiState {
   app::PatchPreview patch_preview;
   std::string patch_preview_error;
   std::string patch_preview_key;
+  std::uint64_t patch_preview_revision = 0;  ///< the workspace revision it was made at
   /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
   ResectPreview resect_preview;
   std::string resect_preview_key;
@@ -239,6 +241,7 @@ struct GuiState {
   /// user said so) and no op runs; the frame loop switches before the next frame.
   std::optional<std::filesystem::path> open_requested;
   bool open_confirmed = false;
+  bool open_announced = false;  ///< the "Opening ..." message has been shown for a frame
   char open_session_path[512] = "";
   /// Quit asked for (window closed, File > Quit, a script's quit): quits at once when nothing
   /// would be lost, otherwise asks first (quit_dialog()).
@@ -256,7 +259,7 @@ struct GuiState {
   [[nodiscard]] std::optional<std::string> why_not(Action a, const std::string& op = {}) const;
   [[nodiscard]] const app::SceneObject* selected() const;
   /// The selected object's automatic centreline (engine::extract_centreline of its current
-  /// shape), made once per workspace revision and object; nullptr (centreline_error says why)
+  /// shape), made once per workspace_revision and object; nullptr (centreline_error says why)
   /// when there is no object or it cannot be made. Not while the controller is busy.
   const engine::CentrelineTree* selected_centreline();
   /// The camera the view shows: the orbit camera, backed off twice as far side by side (each
@@ -267,7 +270,7 @@ struct GuiState {
   void error(std::string text);
   /// Records and runs `op` now (SessionController::run); reports the outcome as a message.
   /// True on success. (A snapshot op renders off-screen on the op thread: the window's GL
-  /// context stays current on this one.)
+  /// context stays current on this one; only destroying a controller can take it away.)
   bool perform(const nlohmann::json& op, const std::string& done_text = {});
 };
 

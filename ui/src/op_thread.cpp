@@ -1,6 +1,7 @@
 #include "sutura/ui/op_thread.hpp"
 
 #include <stdexcept>
+#include <utility>
 
 namespace sutura::ui {
 
@@ -24,8 +25,14 @@ void OpThread::loop() {
     std::function<void()> job = std::move(job_);
     job_ = nullptr;
     lock.unlock();
-    job();
+    std::exception_ptr error;
+    try {
+      job();
+    } catch (...) {
+      error = std::current_exception();  // a broken promise: wait() rethrows it
+    }
     lock.lock();
+    error_ = error;
     busy_ = false;
     changed_.notify_all();
   }
@@ -44,6 +51,7 @@ void OpThread::post(std::function<void()> job) {
 void OpThread::wait() {
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [this] { return !busy_; });
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
 }
 
 void OpThread::run(const std::function<void()>& job) {

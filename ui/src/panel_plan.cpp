@@ -183,6 +183,7 @@ void refresh_patch_preview(GuiState& s, const std::optional<json>& op) {
   const std::string key = op->dump() + "@" + std::to_string(s.controller.revision());
   if (key == s.patch_preview_key) return;
   s.patch_preview_key = key;
+  s.patch_preview_revision = s.controller.revision();
   s.patch_preview = {};
   s.patch_preview_error.clear();
   try {

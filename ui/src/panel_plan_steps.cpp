@@ -40,11 +40,10 @@ void inspect_step(GuiState& s, std::size_t i) {
     ImGui::Text("Took %.2f s.", step.result["seconds"].get<double>());
   if (step.result.contains("warning") && step.result["warning"].is_string())
     ImGui::TextWrapped("Warning: %s", step.result["warning"].get<std::string>().c_str());
-  if (ImGui::TreeNode("As recorded")) {
+  if (noted_tree_node(s.widgets, "As recorded")) {
     ImGui::TextWrapped("%s", readable(step.source).c_str());
     ImGui::TreePop();
   }
-  s.widgets.note("As recorded");
   nlohmann::json result = step.result;
   for (const char* key : {"line", "op", "seconds", "warning"}) result.erase(key);
   if (!result.empty() && ImGui::TreeNode("What it did")) {
@@ -61,9 +60,14 @@ void plan_steps(GuiState& s) {
     return;
   }
   if (s.plan_revision != s.controller.revision()) {
+    // The selection follows its step (by its line in the recording); a step replaced by a
+    // new one after undo is no longer there to inspect.
+    const int line = s.plan_selected >= 0 ? s.plan.steps[static_cast<std::size_t>(s.plan_selected)].line : -1;
     s.plan = s.controller.plan();
     s.plan_revision = s.controller.revision();
-    if (s.plan_selected >= static_cast<int>(s.plan.steps.size())) s.plan_selected = -1;
+    s.plan_selected = -1;
+    for (std::size_t i = 0; i < s.plan.steps.size() && line >= 0; ++i)
+      if (s.plan.steps[i].line == line) s.plan_selected = static_cast<int>(i);
   }
   const app::Plan& p = s.plan;
   if (p.steps.empty()) {

@@ -69,7 +69,7 @@ void refresh_section_plane(GuiState& s) {
     return;
   }
   char key[192];
-  std::snprintf(key, sizeof key, "%llu/%zu/%a,%a,%a/%d", static_cast<unsigned long long>(s.controller.revision()),
+  std::snprintf(key, sizeof key, "%llu/%zu/%a,%a,%a/%d", static_cast<unsigned long long>(s.controller.workspace_revision()),
                 s.object, s.plane_origin->x(), s.plane_origin->y(), s.plane_origin->z(), s.plane_axis);
   if (key == s.section_plane_key) return;
   s.section_plane_key = key;
@@ -196,10 +196,10 @@ void cross_section_controls(GuiState& s) {
     if (r.ok) {
       s.last_measure = r.details;
       s.last_section.reset();
+      s.last_section_revision = s.controller.workspace_revision();
       try {
         s.last_section = app::measure_section(*s.selected(), plane, 0.0);  // the op's own outlines
         s.last_section_plane = plane;
-        s.last_section_revision = s.controller.revision();
       } catch (const std::exception&) {
         // The op succeeded on the same shapes, so this does not happen; the numbers still show.
       }
@@ -208,8 +208,12 @@ void cross_section_controls(GuiState& s) {
       s.error("measure failed: " + r.message);
     }
   }
+  if (!s.last_measure.is_null() && !s.controller.busy() &&
+      s.last_section_revision != s.controller.workspace_revision()) {
+    s.last_measure = nullptr;  // of objects that have changed since
+    s.last_section.reset();
+  }
   if (!s.last_measure.is_null()) measurement_table(s.last_measure);
-  if (s.last_section && s.last_section_revision != s.controller.revision()) s.last_section.reset();
   if (s.last_section) section_view(*s.last_section, s.last_section_plane);
 }
 

@@ -177,12 +177,14 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           for (const auto& m : host.state.messages)
             if (m.text.find(unwanted) != std::string::npos) return fail("a message says: " + m.text);
         }
-        if (x.contains("plan_applied") && !host.state.controller.busy()) {
+        if ((x.contains("plan_applied") || x.contains("plan_contains")) && host.state.controller.busy())
+          return fail("the plan is read when no op runs: wait_idle first");
+        if (x.contains("plan_applied")) {
           const app::Plan plan = host.state.controller.plan();
           if (plan.applied != x["plan_applied"].get<std::size_t>())
             return fail("the plan has " + std::to_string(plan.applied) + " steps in effect");
         }
-        if (x.contains("plan_contains") && !host.state.controller.busy()) {
+        if (x.contains("plan_contains")) {
           const std::string want = x["plan_contains"].get<std::string>();
           bool found = false;
           for (const auto& step : host.state.controller.plan().steps)

@@ -1,5 +1,7 @@
 #include "sutura/ui/session_controller.hpp"
 
+#include <stdexcept>
+
 namespace sutura::ui {
 
 using nlohmann::json;
@@ -73,6 +75,7 @@ ActionOutcome SessionController::execute(const app::Action& action,
 }
 
 ActionOutcome SessionController::run(const json& op) {
+  if (running_) throw std::logic_error("SessionController::run while an op runs");
   ActionOutcome outcome;
   const auto action = record(op, outcome);
   if (!action) return outcome;
@@ -83,6 +86,7 @@ ActionOutcome SessionController::run(const json& op) {
 }
 
 bool SessionController::start(const json& op, std::string& why) {
+  if (running_) throw std::logic_error("SessionController::start while an op runs");
   ActionOutcome outcome;
   const auto action = record(op, outcome);
   if (!action) {
@@ -100,7 +104,14 @@ bool SessionController::start(const json& op, std::string& why) {
   }
   running_ = true;
   ops_.post([this, a = *action] {
-    worker_outcome_ = execute(a, *worker_checkpoint_);
+    try {
+      worker_outcome_ = execute(a, *worker_checkpoint_);
+    } catch (const std::exception& e) {  // taking the failed op back failed (restore, the file)
+      ActionOutcome o;
+      o.op = a.name;
+      o.message = std::string("the op failed and could not be taken back: ") + e.what();
+      worker_outcome_ = o;
+    }
     worker_done_ = true;
     ++news_;
   });
@@ -109,8 +120,8 @@ bool SessionController::start(const json& op, std::string& why) {
 
 std::optional<ActionOutcome> SessionController::poll() {
   if (!running_ || !worker_done_.load()) return std::nullopt;
-  ops_.wait();
   running_ = false;
+  ops_.wait();
   worker_checkpoint_.reset();
   ++revision_;
   return std::exchange(worker_outcome_, std::nullopt);
@@ -130,7 +141,12 @@ void SessionController::set_paused(bool paused) {
 }
 
 void SessionController::cancel() {
-  cancel_ = true;
+  {
+    // Under the lock: a paused worker between checking its wait condition and sleeping would
+    // otherwise miss the notification and sleep for ever.
+    std::lock_guard lock(mutex_);
+    cancel_ = true;
+  }
   resume_.notify_all();
 }
 

@@ -167,7 +167,8 @@ Overlays viewport_overlays(const GuiState& s) {
     }
     if (s.tool == Tool::Patch) {
       // The preview is brought up to date by the panel, drawn before the view.
-      if (s.patch.ends.size() == 2 && !s.patch_preview.outline.empty())
+      if (s.patch.ends.size() == 2 && !s.patch_preview.outline.empty() &&
+          s.patch_preview_revision == s.controller.revision())  // not one of an older mesh
         line(s.patch_preview.outline, {0.1f, 0.3f, 0.9f}, 3.0f);
       markers(s.patch.ends, {0.1f, 0.3f, 0.9f}, 10.0f);
     }

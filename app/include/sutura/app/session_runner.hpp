@@ -4,6 +4,7 @@
 // line), so a replay of a GUI-recorded session runs exactly the code the GUI ran and ends on
 // bit-identical meshes.
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -45,6 +46,10 @@ class SessionRunner {
   [[nodiscard]] const ReplayOptions& options() const;
   /// The steps of the plan so far (plan.hpp), undone ones included. O(steps) copy.
   [[nodiscard]] Plan plan() const;
+  /// How many actions so far changed the workspace (each plan step made, each undo and redo;
+  /// not measurements, snapshots or reports): what is computed from the workspace is still
+  /// good while this stands still. O(1).
+  [[nodiscard]] std::uint64_t changes() const;
   /// options.time_limit has been reached: the action that was running stopped (its error says
   /// where) or the next one was not run.
   [[nodiscard]] bool stopped() const;

@@ -20,13 +20,14 @@ class OpThread {
   OpThread(const OpThread&) = delete;
   OpThread& operator=(const OpThread&) = delete;
 
-  /// Starts `job` on the thread and returns at once. Only when idle(). The job must not throw.
+  /// Starts `job` on the thread and returns at once. Only when idle() (std::logic_error
+  /// otherwise). A job should not throw; one that does is caught, and wait() rethrows it.
   void post(std::function<void()> job);
-  /// Waits until the job posted last has returned (at once when idle()).
+  /// Waits until the job posted last has returned (at once when idle()); rethrows what it threw.
   void wait();
   /// Runs `job` on the thread and waits for it; an exception it throws is rethrown here.
   void run(const std::function<void()>& job);
-  /// No job posted and not yet waited for.
+  /// The job posted last has returned (or none was posted).
   [[nodiscard]] bool idle() const;
 
  private:
@@ -35,6 +36,7 @@ class OpThread {
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::function<void()> job_;  ///< the job to run; empty when none is waiting
+  std::exception_ptr error_;   ///< what the last job threw, until wait() rethrows it
   bool busy_ = false;          ///< a job was posted and has not returned yet
   bool stop_ = false;
   std::thread thread_;         ///< last: starts once the members above exist

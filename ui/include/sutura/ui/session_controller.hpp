@@ -6,8 +6,8 @@
 // what the window shows.
 //
 // Every op runs on one long-lived op thread (op_thread.hpp: the same warm thread for all, as
-// a headless replay runs all on one). run() and replay_existing() wait for it; long ops
-// (simulate, solve) are start()ed and the main thread keeps drawing, reads the progress and
+// a headless replay runs all on one). run() and replay_existing() wait for it; the window
+// start()s its simulation runs, and the main thread keeps drawing, reads the progress and
 // live positions, and may pause, resume or cancel. While such an op runs, workspace() must
 // not be read and no other op may start (busy() is true).
 #include <atomic>
@@ -66,13 +66,14 @@ class SessionController {
   /// state, without recording them again. Throws SessionError when one fails.
   void replay_existing(const app::Session& session);
 
-  /// Records and runs `op` on this thread. Never throws for a bad op: the outcome says what
-  /// went wrong (parse errors are not recorded at all). Must not be called while busy().
+  /// Records `op`, runs it on the op thread and waits for it. Never throws for a bad op: the
+  /// outcome says what went wrong (parse errors are not recorded at all). std::logic_error
+  /// while busy().
   ActionOutcome run(const nlohmann::json& op);
-  /// Records `op` and starts it on the worker thread; false (and `why`) when it does not
-  /// parse. Must not be called while busy().
+  /// Records `op` and starts it on the op thread; false (and `why`) when it does not parse.
+  /// std::logic_error while busy().
   bool start(const nlohmann::json& op, std::string& why);
-  /// Main thread, once per frame: the outcome of a worker op that has ended (joined), if any.
+  /// Main thread, once per frame: the outcome of a start()ed op that has ended, if any.
   std::optional<ActionOutcome> poll();
 
   /// Writes out_dir/report.json for the state now (the same content `sutura replay` of the
@@ -93,6 +94,9 @@ class SessionController {
   /// The objects; only while !busy(). revision() increments after every change.
   [[nodiscard]] const app::Workspace& workspace() const { return runner_.workspace(); }
   [[nodiscard]] std::uint64_t revision() const { return revision_; }
+  /// Changes only when an op changed the objects (app::SessionRunner::changes), unlike
+  /// revision(), which every op moves; only while !busy().
+  [[nodiscard]] std::uint64_t workspace_revision() const { return runner_.changes(); }
   /// The plan's steps (app::SessionRunner::plan); only while !busy().
   [[nodiscard]] app::Plan plan() const { return runner_.plan(); }
   [[nodiscard]] const SessionRecorder& recorder() const { return recorder_; }
