@@ -27,20 +27,31 @@ const char* kSession = R"({"format": "sutura-session", "version": 3}
 {"op": "undo"}
 )";
 
+// A runner for kSession in its own scratch directory (`undo_megabytes`: the undo history's
+// memory limit).
+struct Fixture {
+  sutura::app::Session session;
+  std::unique_ptr<SessionRunner> runner;
+  explicit Fixture(const std::string& name, std::size_t undo_megabytes = sutura::app::Limits{}.undo_megabytes) {
+    const auto dir = sutura::testing::scratch_dir("plan", name);
+    session = sutura::app::parse_session(kSession, dir / "s.jsonl");
+    sutura::app::ReplayOptions o;
+    o.out_dir = dir / "out";
+    o.limits.undo_megabytes = undo_megabytes;
+    runner = std::make_unique<SessionRunner>(session.file, session.description, o);
+  }
+};
+
 struct Replayed {
   std::vector<Plan> after;  // the plan after each action
 };
 
-Replayed run_session(const std::string& text, const std::string& name) {
-  const auto dir = sutura::testing::scratch_dir("plan", name);
-  const auto session = sutura::app::parse_session(text, dir / "s.jsonl");
-  sutura::app::ReplayOptions o;
-  o.out_dir = dir / "out";
-  SessionRunner runner(session.file, session.description, o);
+Replayed run_session(const std::string& name) {
+  Fixture f(name);
   Replayed r;
-  for (const auto& a : session.actions) {
-    runner.execute(a);
-    r.after.push_back(runner.plan());
+  for (const auto& a : f.session.actions) {
+    f.runner->execute(a);
+    r.after.push_back(f.runner->plan());
   }
   return r;
 }
@@ -52,7 +63,7 @@ std::vector<std::string> ops(const Plan& p) {
 }
 
 TEST(Plan, StepsAreTheChangingActionsAndUndoRedoMoveTheirEnd) {
-  const Replayed r = run_session(kSession, "steps");
+  const Replayed r = run_session("steps");
   using V = std::vector<std::string>;
   // generate, fix: two steps; the report is not one.
   EXPECT_EQ(ops(r.after[2]), (V{"generate", "fix"}));
@@ -77,15 +88,11 @@ TEST(Plan, StepsAreTheChangingActionsAndUndoRedoMoveTheirEnd) {
 }
 
 TEST(Plan, ChangesCountTheActionsThatChangedTheWorkspace) {
-  const auto dir = sutura::testing::scratch_dir("plan", "changes");
-  const auto session = sutura::app::parse_session(kSession, dir / "s.jsonl");
-  sutura::app::ReplayOptions o;
-  o.out_dir = dir / "out";
-  SessionRunner runner(session.file, session.description, o);
+  Fixture f("changes");
   std::vector<std::uint64_t> changes;
-  for (const auto& a : session.actions) {
-    runner.execute(a);
-    changes.push_back(runner.changes());
+  for (const auto& a : f.session.actions) {
+    f.runner->execute(a);
+    changes.push_back(f.runner->changes());
   }
   // generate, fix: 1, 2; the report changes nothing; force, incise: 3, 4; undo, undo, redo:
   // 5, 6, 7; pressure 8; undo 9.
@@ -93,14 +100,11 @@ TEST(Plan, ChangesCountTheActionsThatChangedTheWorkspace) {
 }
 
 TEST(Plan, ARestoredCheckpointTakesTheSteps) {
-  const auto dir = sutura::testing::scratch_dir("plan", "checkpoint");
-  const auto session = sutura::app::parse_session(kSession, dir / "s.jsonl");
-  sutura::app::ReplayOptions o;
-  o.out_dir = dir / "out";
-  SessionRunner runner(session.file, session.description, o);
-  runner.execute(session.actions.at(0));
+  Fixture f("checkpoint");
+  SessionRunner& runner = *f.runner;
+  runner.execute(f.session.actions.at(0));
   const auto checkpoint = runner.checkpoint();
-  runner.execute(session.actions.at(1));
+  runner.execute(f.session.actions.at(1));
   ASSERT_EQ(runner.plan().steps.size(), 2u);
   runner.restore(*checkpoint);
   EXPECT_EQ(runner.plan().steps.size(), 1u);
@@ -108,14 +112,9 @@ TEST(Plan, ARestoredCheckpointTakesTheSteps) {
 }
 
 TEST(Plan, UndoableStopsWhereTheUndoHistoryWasDropped) {
-  const auto dir = sutura::testing::scratch_dir("plan", "limits");
-  const auto session = sutura::app::parse_session(kSession, dir / "s.jsonl");
-  sutura::app::ReplayOptions o;
-  o.out_dir = dir / "out";
-  o.limits.undo_megabytes = 0;  // nothing the workspace does not share is kept
-  SessionRunner runner(session.file, session.description, o);
-  for (int i = 0; i < 5; ++i) runner.execute(session.actions.at(i));
-  const Plan p = runner.plan();
+  Fixture f("limits", 0);  // nothing the workspace does not share is kept
+  for (int i = 0; i < 5; ++i) f.runner->execute(f.session.actions.at(i));
+  const Plan p = f.runner->plan();
   EXPECT_EQ(p.applied, 4u);
   EXPECT_LT(p.undoable, p.applied);
 }

@@ -5,16 +5,11 @@
 #   run_gui_open_menu_test.sh SUTURA_EXE SESSION SCRIPT OUT
 set -euo pipefail
 exe=$1 session=$2 script=$3 out=$4
-rm -rf "$out"
-mkdir -p "$out"
-
 source "$(dirname "${BASH_SOURCE[0]}")/xvfb.sh"
-start_xvfb "$out"
+gui_test_dir "$out" "$script"
 
 cp "$session" "$out/opened.jsonl"
 cp "$session" "$out/opened.orig"
-src=$(cd "$(dirname "$script")" && pwd)
-sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
 "$exe" gui --out "$out" --record "$out/first.jsonl" \
   --script "$out/script.jsonl" --width 1400 --height 900
 
@@ -34,8 +29,6 @@ head -n "$lines" "$second" | cmp - "$out/opened.orig" ||
   fail "the new recording does not start with the opened session"
 [ "$(wc -l <"$second")" -eq $((lines + 1)) ] || fail "the new recording should add one action"
 "$exe" replay "$second" --out "$out/replayed" --quiet
-gui_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/report.json")
-replay_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/replayed/report.json")
-[ -n "$gui_hashes" ] && [ "$gui_hashes" = "$replay_hashes" ] ||
+same_geometry "$out/report.json" "$out/replayed/report.json" ||
   fail "the replayed recording does not reproduce the window's geometry"
 echo "gui open-menu test: ok ($out)"

@@ -5,16 +5,11 @@
 #   run_gui_session_test.sh SUTURA_EXE SESSION SCRIPT OUT
 set -euo pipefail
 exe=$1 session=$2 script=$3 out=$4
-rm -rf "$out"
-mkdir -p "$out"
-
 source "$(dirname "${BASH_SOURCE[0]}")/xvfb.sh"
-start_xvfb "$out"
+gui_test_dir "$out" "$script"
 
 cp "$session" "$out/opened.jsonl"
 cp "$session" "$out/opened.orig"
-src=$(cd "$(dirname "$script")" && pwd)
-sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
 "$exe" gui "$out/opened.jsonl" --out "$out" --record "$out/recorded.jsonl" \
   --script "$out/script.jsonl" --width 1400 --height 900
 
@@ -27,8 +22,6 @@ head -n "$lines" "$out/recorded.jsonl" | cmp - "$out/opened.orig" ||
 [ "$(wc -l <"$out/recorded.jsonl")" -gt "$lines" ] || fail "nothing recorded after the opened session"
 
 "$exe" replay "$out/recorded.jsonl" --out "$out/replayed" --quiet
-gui_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/report.json")
-replay_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/replayed/report.json")
-[ -n "$gui_hashes" ] && [ "$gui_hashes" = "$replay_hashes" ] ||
+same_geometry "$out/report.json" "$out/replayed/report.json" ||
   fail "the replayed recording does not reproduce the window's geometry"
 echo "gui session test: ok ($out)"

@@ -8,15 +8,8 @@
 #   run_gui_test.sh SUTURA_EXE SCRIPT OUT COMPARE_VIEW
 set -euo pipefail
 exe=$1 script=$2 out=$3 compare_view=$4
-rm -rf "$out"
-mkdir -p "$out"
-
 source "$(dirname "${BASH_SOURCE[0]}")/xvfb.sh"
-start_xvfb "$out"
-
-# OUT/ and SRC/ in the script stand for the output directory and the script's directory.
-src=$(cd "$(dirname "$script")" && pwd)
-sed -e "s|OUT/|$out/|g" -e "s|SRC/|$src/|g" "$script" >"$out/script.jsonl"
+gui_test_dir "$out" "$script"
 "$exe" gui --out "$out" --record "$out/recorded.jsonl" \
   --script "$out/script.jsonl" --width 1400 --height 900
 
@@ -25,11 +18,7 @@ for f in window.png gui_snapshot.png report.json recorded.jsonl; do
 done
 
 "$exe" replay "$out/recorded.jsonl" --out "$out/replayed" --quiet
-gui_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/report.json")
-replay_hashes=$(grep -o '"position_hash": "[0-9a-f]*"' "$out/replayed/report.json")
-echo "GUI:    $gui_hashes"
-echo "replay: $replay_hashes"
-[ -n "$gui_hashes" ] && [ "$gui_hashes" = "$replay_hashes" ] || {
+same_geometry "$out/report.json" "$out/replayed/report.json" || {
   echo "gui test: the replayed session does not reproduce the GUI's geometry" >&2
   exit 1
 }

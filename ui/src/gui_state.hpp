@@ -214,11 +214,12 @@ struct GuiState {
   std::uint64_t centreline_revision = ~std::uint64_t(0);
   std::size_t centreline_object = 0;
   /// The Patch tool's preview of the patch op it would record now (patch_preview_key: that
-  /// op and the workspace revision), or why it cannot be added (patch_preview_error).
+  /// op, on the workspace at patch_preview_revision), or why it cannot be added
+  /// (patch_preview_error).
   app::PatchPreview patch_preview;
   std::string patch_preview_error;
   std::string patch_preview_key;
-  std::uint64_t patch_preview_revision = 0;  ///< the workspace revision it was made at
+  std::uint64_t patch_preview_revision = 0;
   /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
   ResectPreview resect_preview;
   std::string resect_preview_key;

@@ -180,8 +180,8 @@ void refresh_patch_preview(GuiState& s, const std::optional<json>& op) {
     s.patch_preview_key.clear();
     return;
   }
-  const std::string key = op->dump() + "@" + std::to_string(s.controller.revision());
-  if (key == s.patch_preview_key) return;
+  const std::string key = op->dump();
+  if (key == s.patch_preview_key && s.patch_preview_revision == s.controller.revision()) return;
   s.patch_preview_key = key;
   s.patch_preview_revision = s.controller.revision();
   s.patch_preview = {};

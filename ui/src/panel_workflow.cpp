@@ -62,52 +62,45 @@ void menu_bar(GuiState& s) {
   ImGui::EndMainMenuBar();
 }
 
+namespace {
+
+enum class LossAnswer { None, Go, Keep };
+
+// The modal that asks before `what` (quitting, opening another session) drops `lost`:
+// "`go`" or "Keep planning"; the answer of this frame (None while it waits).
+LossAnswer confirm_loss(GuiState& s, const char* title, const char* what, const char* go,
+                        const std::vector<std::string>& lost) {
+  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  LossAnswer answer = LossAnswer::None;
+  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("Every committed action is in the recording. %s now loses:", what);
+    for (const auto& l : lost) ImGui::BulletText("%s", l.c_str());
+    if (gated_button(s.widgets, go, std::nullopt)) answer = LossAnswer::Go;
+    ImGui::SameLine();
+    if (gated_button(s.widgets, "Keep planning", std::nullopt)) answer = LossAnswer::Keep;
+    if (answer != LossAnswer::None) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  return answer;
+}
+
+}  // namespace
+
 void open_dialog(GuiState& s) {
   if (!s.open_requested || s.open_confirmed) return;
   const std::vector<std::string> lost = s.unsaved_work();
-  if (lost.empty()) {
-    s.open_confirmed = true;
-    return;
-  }
-  if (!ImGui::IsPopupOpen("Open another session?")) ImGui::OpenPopup("Open another session?");
-  if (ImGui::BeginPopupModal("Open another session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::TextUnformatted("Every committed action is in the recording. Opening now loses:");
-    for (const auto& l : lost) ImGui::BulletText("%s", l.c_str());
-    if (gated_button(s.widgets, "Open anyway", std::nullopt)) {
-      s.open_confirmed = true;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (gated_button(s.widgets, "Keep planning##open", std::nullopt)) {
-      s.open_requested.reset();
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
-  }
+  const LossAnswer answer =
+      lost.empty() ? LossAnswer::Go : confirm_loss(s, "Open another session?", "Opening", "Open anyway", lost);
+  if (answer == LossAnswer::Go) s.open_confirmed = true;
+  if (answer == LossAnswer::Keep) s.open_requested.reset();
 }
 
 void quit_dialog(GuiState& s) {
   if (!s.quit_requested) return;
   const std::vector<std::string> lost = s.unsaved_work();
-  if (lost.empty()) {
-    s.quit = true;
-    return;
-  }
-  if (!ImGui::IsPopupOpen("Quit Sutura?")) ImGui::OpenPopup("Quit Sutura?");
-  if (ImGui::BeginPopupModal("Quit Sutura?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::TextUnformatted("Every committed action is in the recording. Quitting now loses:");
-    for (const auto& l : lost) ImGui::BulletText("%s", l.c_str());
-    if (gated_button(s.widgets, "Quit anyway", std::nullopt)) {
-      s.quit = true;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::SameLine();
-    if (gated_button(s.widgets, "Keep planning", std::nullopt)) {
-      s.quit_requested = false;
-      ImGui::CloseCurrentPopup();
-    }
-    ImGui::EndPopup();
-  }
+  const LossAnswer answer = lost.empty() ? LossAnswer::Go : confirm_loss(s, "Quit Sutura?", "Quitting", "Quit anyway", lost);
+  if (answer == LossAnswer::Go) s.quit = true;
+  if (answer == LossAnswer::Keep) s.quit_requested = false;
 }
 
 void workflow_window(GuiState& s) {

@@ -27,7 +27,7 @@ struct PatchPreview {
 /// limited to `max_faces` faces) without changing anything. Throws what the op would throw
 /// for the same reason (engine::InvalidArgument: no such incision, a shape that does not fit
 /// it, bad sizes). Cost: one plan_patch, and O(outline points · host faces) for the
-/// projection (about 5 ms for a 4 mm patch on the coarse arch).
+/// projection.
 PatchPreview preview_patch(const SceneObject& object, const PatchOp& op, std::size_t max_faces);
 
 }  // namespace sutura::app

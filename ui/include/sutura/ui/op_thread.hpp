@@ -1,9 +1,8 @@
 #pragma once
 // One long-lived thread on which the session controller runs every op, one job at a time.
 // Why one thread for all of them, rather than a new thread per long op: an op run on a fresh
-// thread allocates every buffer of its solve from that thread's new, empty malloc arena
-// (new memory, faulted in page by page). The coarse arch's relaxation took 0.72 s on a fresh
-// thread against 0.65 s on the thread that had run the session before it
+// thread allocates every buffer of its solve from that thread's new, empty malloc arena (new
+// memory, faulted in page by page), and was measurably slower than a headless replay
 // (docs/performance.md, GUI).
 #include <condition_variable>
 #include <exception>
