@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "replay_run.hpp"
+#include "sutura/app/report.hpp"
 #include "sutura/app/simulation.hpp"
 #include "sutura/engine/sim/point_triangle_distance.hpp"
 #include "sutura/engine/sim/rigid_modes.hpp"
@@ -548,21 +549,24 @@ json Run::execute(const ProbeOp& op) {
 }
 
 json Run::execute(const CheckOp& op) {
-  if (!op.measurement.empty()) {
-    if (!measurements.contains(op.measurement))
+  if (!op.measurement.empty() || !op.object.empty()) {
+    const bool measured = !op.measurement.empty();
+    std::string what = measured ? "measurement '" : "object '";
+    what += measured ? op.measurement : op.object;
+    what += "'";
+    if (measured && !measurements.contains(op.measurement))
       throw std::runtime_error("no measurement named '" + op.measurement +
                                "' recorded before this check");
-    const json* v = &measurements[op.measurement];
+    const json summary = measured ? json() : object_summary(object(op.object));
+    const json* v = measured ? &measurements[op.measurement] : &summary;
     std::stringstream path(op.quantity);
     for (std::string key; std::getline(path, key, '.');) {
       if (!v->is_object() || !v->contains(key))
-        throw std::runtime_error("measurement '" + op.measurement + "' has no quantity '" +
-                                 op.quantity + "'");
+        throw std::runtime_error(what + " has no quantity '" + op.quantity + "'");
       v = &(*v)[key];
     }
     if (!v->is_number())
-      throw std::runtime_error("measurement '" + op.measurement + "' quantity '" + op.quantity +
-                               "' is not a number");
+      throw std::runtime_error(what + " quantity '" + op.quantity + "' is not a number");
     const double got = v->get<double>();
     double lo = 0.0, hi = 0.0;
     if (op.range) {
@@ -572,12 +576,12 @@ json Run::execute(const CheckOp& op) {
       lo = op.value - allowed, hi = op.value + allowed;
     }
     const bool pass = got >= lo && got <= hi;
-    json j = {{"measurement", op.measurement}, {"quantity", op.quantity}, {"value", got},
-              {"min", lo}, {"max", hi}, {"pass", pass}};
+    json j = {{measured ? "measurement" : "object", measured ? op.measurement : op.object},
+              {"quantity", op.quantity}, {"value", got}, {"min", lo}, {"max", hi}, {"pass", pass}};
     checks.push_back(j);
     if (!pass) {
       std::ostringstream m;
-      m << "check failed: measurement '" << op.measurement << "' " << op.quantity << " = " << got
+      m << "check failed: " << what << " " << op.quantity << " = " << got
         << ", expected in [" << lo << ", " << hi << "]";
       throw std::runtime_error(m.str());
     }

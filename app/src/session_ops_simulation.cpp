@@ -280,9 +280,15 @@ void value_with_tolerances(Fields& f, CheckOp& op) {
 
 CheckOp parse_check(Fields& f) {
   CheckOp op;
-  if (f.has("measurement")) {
-    if (f.has("probe")) f.fail("measurement", "give either probe or measurement");
-    op.measurement = f.required_string("measurement");
+  const int kinds = int(f.has("probe")) + int(f.has("measurement")) + int(f.has("object"));
+  if (kinds > 1)
+    f.fail(f.has("measurement") ? "measurement" : "object",
+           "give one of probe, measurement or object");
+  if (f.has("measurement") || f.has("object")) {
+    if (f.has("measurement"))
+      op.measurement = f.required_string("measurement");
+    else
+      op.object = f.required_string("object");
     op.quantity = f.required_string("quantity");
     op.range = f.optional_range("range");
     if (op.range) {

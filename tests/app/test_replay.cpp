@@ -311,6 +311,60 @@ TEST(Replay, SimulationOpsProduceProbesAndChecks) {
   fs::remove_all(out);
 }
 
+// A check on an object reads its quantities as report.json lists them: the strip's right
+// triangles have a smallest angle of 45 degrees.
+TEST(Replay, ObjectChecksReadTheReportsQuantities) {
+  fs::path dir = fresh_dir("object_check");
+  const std::string head =
+      "{\"format\": \"sutura-session\", \"version\": 3}\n"
+      "{\"op\": \"generate\", \"object\": \"a\", \"shape\": \"strip\", \"length\": 4, "
+      "\"width\": 4, \"segments_length\": 4, \"segments_width\": 4}\n";
+  const auto run = [&](const std::string& check) {
+    std::ofstream(dir / "s.jsonl") << head << check << "\n";
+    ReplayOptions o;
+    o.out_dir = dir / "out";
+    return replay(load_session(dir / "s.jsonl"), o);
+  };
+  const ReplayResult ok = run(
+      "{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"quality.min_angle_deg\", "
+      "\"range\": [44.9, 45.1]}");
+  ASSERT_EQ(ok.report["checks"].size(), 1u);
+  EXPECT_EQ(ok.report["checks"][0]["object"], "a");
+  EXPECT_NEAR(ok.report["checks"][0]["value"].get<double>(), 45.0, 1e-9);
+  EXPECT_TRUE(ok.report["checks"][0]["pass"].get<bool>());
+  EXPECT_TRUE(run("{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"faces\", "
+                  "\"value\": 32, \"abs_tol\": 0.5}")
+                  .report["checks"][0]["pass"]
+                  .get<bool>());
+  const auto failure = [&](const std::string& check) {
+    try {
+      run(check);
+    } catch (const SessionError& e) {
+      EXPECT_EQ(e.line(), 3);
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "no error for " << check;
+    return std::string();
+  };
+  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"quantity\": "
+                    "\"rest_quality.min_angle_deg\", \"range\": [50, 90]}")
+                .find("check failed: object 'a' rest_quality.min_angle_deg = 45"),
+            std::string::npos);
+  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"quality.nope\", "
+                    "\"range\": [0, 1]}")
+                .find("object 'a' has no quantity 'quality.nope'"),
+            std::string::npos);
+  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"b\", \"quantity\": \"faces\", "
+                    "\"range\": [0, 1]}")
+                .find("no object named 'b'"),
+            std::string::npos);
+  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"probe\": \"p\", "
+                    "\"quantity\": \"ux\", \"value\": 0, \"abs_tol\": 1}")
+                .find("give one of probe, measurement or object"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(Replay, SolveReportsWhetherTheStateIsAStableEquilibrium) {
   // The Sze strip (EI = 100, L = 10) clamped at x = 0 and compressed along its axis by a dead
   // line load: below Euler's P_1 = pi^2 EI / (4 L^2) = 2.47 the straight state is stable,

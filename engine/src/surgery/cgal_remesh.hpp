@@ -42,6 +42,11 @@ struct CgalRemeshInput {
   /// Delaunay flips, at most 6): curvature the target length cannot follow gets finer faces,
   /// down to a third of the target (a quarter). 0: off (the surgical bands). Every face must then be in `region`.
   double max_deviation = 0.0;  ///< needs a band (its target sets the split floor)
+  /// After the bands' flips and needle collapses: the free corners (not fixed, on no polyline
+  /// nor open boundary) of band faces with an angle below this (degrees) are moved on the
+  /// input, each only where that raises the smallest angle of its faces (then Delaunay flips;
+  /// 4 rounds at most). 0: off.
+  double raise_angles_below_deg = 0.0;
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
   /// and the faces around their corners get CGAL's angle smoothing (open boundaries, polylines

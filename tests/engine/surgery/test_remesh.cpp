@@ -2,6 +2,7 @@
 #include "sutura/engine/surgery/remesh.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -108,6 +109,47 @@ TEST(Remesh, ConstrainedVerticesAndPolylinesAreKept) {
     length += (r.mesh.position(a) - r.mesh.position(b)).norm();
   }
   EXPECT_NEAR(length, (line.back() - line.front()).norm(), 1e-9);
+}
+
+// Two fixed vertices a third of the target apart force thin faces on the short edge between
+// them: raising the corners of thin faces lifts the region's smallest angle, never lowers it,
+// moves no fixed vertex and keeps the surface (the plane z = 0).
+TEST(Remesh, CornersOfThinFacesMoveAndTheSmallestAngleNeverFalls) {
+  const SurfaceMesh grid = make_strip({20.0, 10.0, 20, 10});
+  std::vector<Vec3> x = grid.positions();
+  VertexId a, b;
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if ((x[v] - Vec3(10, 0, 0)).norm() < 1e-9) a = VertexId(v);
+    if ((x[v] - Vec3(11, 0, 0)).norm() < 1e-9) b = VertexId(v);
+  }
+  ASSERT_TRUE(a.valid() && b.valid());
+  x[b.index()] = Vec3(10.3, 0.05, 0.0);
+  const SurfaceMesh m(x, grid.faces());
+  RemeshParams p;
+  p.target_edge_length = 1.0;
+  p.region = faces_near_polyline(m, {Vec3(10, 0, 0)}, 4.0);
+  p.constrained_vertices.assign(m.num_vertices(), false);
+  p.constrained_vertices[a.index()] = p.constrained_vertices[b.index()] = true;
+  double smallest[2];
+  for (const double raise : {0.0, 25.0}) {
+    p.raise_angles_below_deg = raise;
+    const RemeshResult r = remesh(m, p);
+    ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+    smallest[raise > 0.0] = r.after.min_angle_deg;
+    for (const Vec3& y : r.mesh.positions()) EXPECT_EQ(y.z(), 0.0);
+    int kept = 0;
+    for (std::size_t w = 0; w < r.mesh.num_vertices(); ++w) {
+      const VertexOrigin& o = r.maps.vertices[w];
+      if (o.kind == VertexOriginKind::Copy && (o.parents[0] == a || o.parents[0] == b)) {
+        EXPECT_EQ(r.mesh.position(VertexId(w)), m.position(o.parents[0]));
+        ++kept;
+      }
+    }
+    EXPECT_EQ(kept, 2);
+  }
+  std::printf("smallest angle: %.2f deg without raising, %.2f deg with\n", smallest[0], smallest[1]);
+  EXPECT_LT(smallest[0], 25.0);
+  EXPECT_GT(smallest[1], smallest[0] + 1.0);
 }
 
 TEST(Remesh, GradedSizingIsFinestAtTheCurveAndGrowsToTheHost) {
@@ -256,6 +298,11 @@ TEST(Remesh, BadInputIsRefusedNamingTheField) {
   p.iterations = 0;
   EXPECT_NE(message(p).find("iterations"), std::string::npos);
   p.iterations = 3;
+  p.raise_angles_below_deg = -1.0;
+  EXPECT_NE(message(p).find("raise_angles_below_deg"), std::string::npos);
+  p.raise_angles_below_deg = std::nan("");
+  EXPECT_NE(message(p).find("raise_angles_below_deg"), std::string::npos);
+  p.raise_angles_below_deg = 25.0;
   p.constrained_edges = {{VertexId(0), VertexId(30)}};
   EXPECT_NE(message(p).find("constrained_edges"), std::string::npos);
   p.constrained_edges.clear();

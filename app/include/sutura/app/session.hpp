@@ -260,15 +260,18 @@ struct ProbeOp {
 
 /// Verification: fails the replay when a probed quantity is outside value ± tolerance.
 /// Or, with `measurement`, a quantity of a recorded measurement ("after.min_area_mm2",
-/// "area_change_percent", ...) against value ± tolerance or a [min, max] range.
+/// "area_change_percent", ...), or with `object`, a quantity of the object as report.json
+/// lists it ("quality.min_angle_deg", "rest_quality.min_angle_deg", "faces", ...), against
+/// value ± tolerance or a [min, max] range.
 struct CheckOp {
   std::string probe;
   std::string measurement;
-  std::string quantity;  ///< probe: ux uy uz rx ry rz, or "|u|"; measurement: dotted path
+  std::string object;
+  std::string quantity;  ///< probe: ux uy uz rx ry rz, or "|u|"; otherwise a dotted path
   double value = 0.0;
   double rel_tol = 0.0;  ///< relative to |value|
   double abs_tol = 0.0;
-  std::optional<std::array<double, 2>> range;  ///< measurement checks: inclusive bounds
+  std::optional<std::array<double, 2>> range;  ///< measurement and object checks: inclusive bounds
 };
 
 // --- surgery ops (session_ops_surgery.cpp; executed by replay_surgery_ops.cpp) -------------
