@@ -52,13 +52,18 @@ int main(int argc, char** argv) {
     const int after = band > 0 ? (snapshot.width - 8) / 2 : snapshot.width;
     if (after <= 0 || after > window.width) throw std::runtime_error("the snapshot is wider than the window");
     const int top = 60, bottom = window.height - 110;  // menu bar and captions; message history
+    // The view cube's square in the view's top-left corner (ui/src/panels.hpp,
+    // kViewCubeCorner: 112 pixels below the menu bar's 19) is drawn in the window only.
+    const int cube_right = 112, cube_bottom = 19 + 112;
     // Agreement is counted where either image shows something: the background, which both
     // share, would otherwise hide a missing dot or line.
     long compared = 0, agree = 0, vessel = 0;
     sutura::render::Image diff_image(after, bottom - top);
     for (int y = top; y < bottom; ++y)
       for (int x = 0; x < after; ++x) {
-        const auto w = window.pixel(window.width - after + x, y);
+        const int window_x = window.width - after + x;
+        if (after == snapshot.width && x < cube_right && y < cube_bottom) continue;
+        const auto w = window.pixel(window_x, y);
         const auto s = snapshot.pixel(snapshot.width - after + x, band + y);
         int drawn = 0, shown = 0;
         for (int c = 0; c < 3; ++c) {

@@ -423,6 +423,7 @@ int run_gui(const GuiOptions& options) {
       viewport_input(s, std::max(1.0f, scene_width), float(height));
       view_captions(s, view_width);
       end_labels(s);
+      view_cube(s);
     } catch (const std::exception& e) {
       s.error(e.what());
     }

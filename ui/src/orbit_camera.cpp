@@ -74,6 +74,21 @@ void OrbitCamera::look_from(StandardView view) {
   }
 }
 
+std::optional<StandardView> OrbitCamera::standard_view() const {
+  for (const StandardView v : kStandardViews) {
+    OrbitCamera c = *this;
+    c.look_from(v);
+    if (c.yaw_ == yaw_ && c.pitch_ == pitch_) return v;
+  }
+  return std::nullopt;
+}
+
+std::array<Vec3, 3> OrbitCamera::view_axes() const {
+  const Vec3 f = forward();
+  const Vec3 right = f.cross(Vec3::UnitZ()).normalized();
+  return {right, right.cross(f), f};
+}
+
 void OrbitCamera::zoom(float steps) {
   distance_ = std::clamp(distance_ * std::pow(0.9, double(steps)), 1e-3, 1e6);
 }

@@ -6,12 +6,6 @@
 
 namespace sutura::ui {
 
-namespace {
-constexpr StandardView kStandardViews[] = {StandardView::Anterior,     StandardView::Posterior,
-                                           StandardView::LeftLateral,  StandardView::RightLateral,
-                                           StandardView::Superior,     StandardView::Inferior};
-}  // namespace
-
 void menu_bar(GuiState& s) {
   if (!ImGui::BeginMainMenuBar()) return;
   const bool file_menu = ImGui::BeginMenu("File");

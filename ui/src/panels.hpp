@@ -24,6 +24,12 @@ void quit_dialog(GuiState& s);
 void open_dialog(GuiState& s);
 /// Messages at the bottom of the window: errors in red, dismissable.
 void message_window(GuiState& s);
+/// The view cube in the 3-D view's top-left corner (kViewCubeCorner pixels square, below the
+/// menu bar): a cube turned as the camera is, its faces named A, P, L, R, S, I (anterior ...
+/// inferior, the patient frame of docs/anatomy.md); clicking a face looks from there, as
+/// View from does. Each visible face is noted as "view cube " + to_string(view).
+void view_cube(GuiState& s);
+inline constexpr float kViewCubeCorner = 112.0f;
 
 /// Commits the incision draft (Enter in the view); no-op with a message when incomplete.
 void commit_incision(GuiState& s);

@@ -191,6 +191,11 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
             found = found || app::describe_action(step.source).find(want) != std::string::npos;
           if (!found) return fail("no plan step reads \"" + want + "\"");
         }
+        if (x.contains("view")) {
+          const std::optional<StandardView> v = host.state.camera.standard_view();
+          const std::string seen = v ? to_string(*v) : "no standard view";
+          if (seen != x["view"].get<std::string>()) return fail("the camera looks from " + seen);
+        }
         if (x.contains("stage") &&
             x["stage"].get<std::string>() != std::string(to_string(host.state.stages.stage())))
           return fail("stage is " + std::string(to_string(host.state.stages.stage())) +

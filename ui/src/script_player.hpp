@@ -20,6 +20,8 @@
 //   {"expect": {"message_not_contains": "text"}}   fail if a shown message contains the text
 //   {"expect": {"plan_applied": N, "plan_contains": "text"}}   fail unless N plan steps are in
 //       effect and some step's words (app::describe_action) contain the text
+//   {"expect": {"view": "Superior"}}   fail unless the camera looks from that standard view
+//       (to_string(StandardView); "no standard view" after orbiting)
 //   {"time_frames": N}                 print the mean frame time of the next N frames
 //   {"quit": true}                     as closing the window (asks first when work would be lost)
 #include <chrono>

@@ -14,6 +14,10 @@ void WidgetRegistry::note(const std::string& label) {
   if (label == scroll_to_) scroll_to_.clear();
 }
 
+void WidgetRegistry::note_rect(const std::string& label, const ImVec4& rect) {
+  current_[label] = {rect, true};
+}
+
 std::optional<ImVec2> WidgetRegistry::centre(const std::string& label) const {
   for (const auto* map : {&current_, &previous_}) {
     const auto it = map->find(label);

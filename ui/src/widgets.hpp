@@ -14,6 +14,9 @@ class WidgetRegistry {
  public:
   /// Records the last ImGui item's rectangle under `label`.
   void note(const std::string& label);
+  /// Records `rect` (min x, min y, max x, max y; window pixels) under `label`: a part of an
+  /// item that is clicked by place, such as a face of the view cube.
+  void note_rect(const std::string& label, const ImVec4& rect);
   /// Centre of the widget drawn with `label` in the last frame, if any.
   [[nodiscard]] std::optional<ImVec2> centre(const std::string& label) const;
   /// The centre of that widget was inside its window's visible area (not scrolled away).

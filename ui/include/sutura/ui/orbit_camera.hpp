@@ -2,6 +2,7 @@
 // The GUI's camera: orbits around a target (yaw about world +z, pitch towards it), pans in
 // the view plane and zooms by distance; turns a window pixel into a picking ray.
 #include <array>
+#include <optional>
 
 #include "sutura/engine/geometry/bvh.hpp"
 #include "sutura/render/camera.hpp"
@@ -11,6 +12,9 @@ namespace sutura::ui {
 /// Standard anatomical views, named by where the eye is, in the patient frame of the bundled
 /// anatomy and of `prepare` (docs/anatomy.md: +x patient's left, +y posterior, +z superior).
 enum class StandardView { Anterior, Posterior, LeftLateral, RightLateral, Superior, Inferior };
+inline constexpr StandardView kStandardViews[] = {StandardView::Anterior,    StandardView::Posterior,
+                                                 StandardView::LeftLateral, StandardView::RightLateral,
+                                                 StandardView::Superior,    StandardView::Inferior};
 /// "Anterior", "Posterior", "Left lateral", "Right lateral", "Superior", "Inferior".
 const char* to_string(StandardView v);
 
@@ -29,6 +33,11 @@ class OrbitCamera {
   /// front (anterior), behind, the patient's left or right with +z up, or from above or below
   /// (pitch at its +-89 degree limit; +y up on screen from above).
   void look_from(StandardView view);
+  /// The standard view the camera looks from (as look_from() left it; orbiting leaves it),
+  /// if any.
+  [[nodiscard]] std::optional<StandardView> standard_view() const;
+  /// Unit vectors (right, up on screen, forward into it) of the view, in world coordinates.
+  [[nodiscard]] std::array<engine::Vec3, 3> view_axes() const;
   /// Scroll: each step towards the target shrinks the distance by 10 % (negative: away).
   void zoom(float steps);
   /// Scroll with the pointer over `p` (a point on the surface): zooms as zoom() does, moving
