@@ -482,7 +482,10 @@ json Run::relax(const SimulateOp& op) {
     }
   }
   if (r.cancelled) throw OpCancelled("relaxation cancelled at s = " + std::to_string(r.s_reached));
-  if (!r.ok) throw std::runtime_error(r.message);
+  if (!r.ok) {
+    const std::string advice = relaxation_advice(r.message, op.collapse_barrier, params.solver);
+    throw std::runtime_error(advice.empty() ? r.message : r.message + ". " + advice);
+  }
   for (SceneObject* o : objs) commit_pending_loads(*o);
   json history = json::array();
   for (const auto& h : r.history)

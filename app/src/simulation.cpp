@@ -4,6 +4,33 @@
 
 namespace sutura::app {
 
+std::string relaxation_advice(const std::string& message, bool collapse_barrier,
+                              engine::RelaxationSolver solver) {
+  const auto says = [&](const char* what) { return message.find(what) != std::string::npos; };
+  if (says("collapsed a triangle") || says("non-finite") || says("exploded")) {
+    if (!collapse_barrier)
+      return "Advice: elements collapse where the relaxation gathers tissue; turn on the collapse "
+             "barrier (\"collapse_barrier\": true; in the window: Simulate > Resist collapse "
+             "(gathered tissue)), which keeps a triangle from folding through itself.";
+    if (solver == engine::RelaxationSolver::Static)
+      return "Advice: elements collapse even with the collapse barrier; relax statically only "
+             "part of the way and the rest as damped dynamics (\"relax\": {\"until\": 0.6} "
+             "then {\"solver\": \"dynamic\"}; in the window: Simulate > Static, then damped "
+             "dynamics (flap)), whose inertia carries gathered tissue through.";
+    return "Advice: elements collapse with the barrier and damped dynamics too: the plan "
+           "gathers more tissue than the wall can take up. Check that the sutured chains run "
+           "the same way and are of similar length, and that a patch is wide enough for the "
+           "gap it closes.";
+  }
+  if (says("no convergence in"))
+    return "Advice: relax in more, smaller increments (\"relax\": {\"steps\": ...}; in the "
+           "window: Simulate > relax steps).";
+  if (says("singular"))
+    return "Advice: the object can move freely; hold it (the fix op; in the window: Plan > Fix "
+           "ends).";
+  return {};
+}
+
 std::unique_ptr<engine::ShellModel> make_model(const std::string& name) {
   if (name == "corotational") return engine::make_corotational_shell();
   if (name == "discrete") return engine::make_discrete_shell();

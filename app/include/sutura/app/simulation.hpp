@@ -14,11 +14,20 @@
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
+#include "sutura/engine/surgery/relaxation.hpp"
 
 namespace sutura::app {
 
 /// "corotational" (default, 6 DOF) | "discrete" (3 DOF); throws std::invalid_argument.
 std::unique_ptr<engine::ShellModel> make_model(const std::string& name);
+
+/// What to change after a relaxation failed with the engine's `message` under these settings,
+/// in plain words with the session field and the window's control that change it ("Advice:
+/// ...", one or two sentences), or empty when the message names no cause it can advise on. Collapsing or exploding elements: first the collapse barrier, then (static) the flap
+/// method of static then damped dynamics, then the plan itself; no convergence: more
+/// increments; a singular tangent: hold the object.
+std::string relaxation_advice(const std::string& message, bool collapse_barrier,
+                              engine::RelaxationSolver solver);
 
 class MergedSystem {
  public:

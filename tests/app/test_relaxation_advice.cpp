@@ -1,0 +1,77 @@
+// A relaxation that fails says what to change (app::relaxation_advice): the collapse barrier,
+// then the flap method, then the plan for collapsing elements; more increments when Newton
+// does not converge; holding the object when the tangent is singular.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "replay_fixture.hpp"
+#include "sutura/app/simulation.hpp"
+
+using namespace sutura::app;
+using sutura::engine::RelaxationSolver;
+
+namespace {
+
+const std::string kCollapsed =
+    "relaxation failed at s = 0.72: static solve failed at load factor 1: every trial step "
+    "collapsed a triangle (area below 0.01 of its rest area); rolled back to s = 0.7";
+
+TEST(RelaxationAdvice, CollapsingElementsGetTheBarrierThenTheFlapMethodThenThePlan) {
+  const std::string first = relaxation_advice(kCollapsed, false, RelaxationSolver::Static);
+  EXPECT_EQ(first.rfind("Advice: ", 0), 0u) << first;
+  EXPECT_NE(first.find("\"collapse_barrier\": true"), std::string::npos) << first;
+  EXPECT_NE(first.find("Resist collapse (gathered tissue)"), std::string::npos) << first;
+  const std::string second = relaxation_advice(kCollapsed, true, RelaxationSolver::Static);
+  EXPECT_NE(second.find("\"solver\": \"dynamic\""), std::string::npos) << second;
+  EXPECT_NE(second.find("Static, then damped dynamics (flap)"), std::string::npos) << second;
+  const std::string third = relaxation_advice(kCollapsed, true, RelaxationSolver::Dynamic);
+  EXPECT_NE(third.find("patch is wide enough"), std::string::npos) << third;
+  EXPECT_NE(relaxation_advice("dynamics step 3 of 80 failed: the strain energy exploded (1e9 N*mm)",
+                              true, RelaxationSolver::Dynamic),
+            "");
+}
+
+TEST(RelaxationAdvice, OtherFailuresGetTheirOwnAdviceOrNone) {
+  EXPECT_NE(relaxation_advice("static solve failed at load factor 1: no convergence in 1 Newton "
+                              "iterations",
+                              false, RelaxationSolver::Static)
+                .find("\"steps\""),
+            std::string::npos);
+  EXPECT_NE(relaxation_advice("the tangent stiffness is singular (is the structure constrained?)",
+                              false, RelaxationSolver::Static)
+                .find("Fix ends"),
+            std::string::npos);
+  EXPECT_EQ(relaxation_advice("the linear solve failed: out of memory", false, RelaxationSolver::Static), "");
+}
+
+// Two strips 20 mm apart sutured and relaxed in one increment of one Newton iteration: the
+// replay's error is the engine's message and the advice after it.
+TEST(RelaxationAdvice, AFailedRelaxationInAReplaySaysWhatToChange) {
+  const auto dir = sutura::testing::scratch_dir("advice", "strips");
+  const std::string session =
+      "{\"format\": \"sutura-session\", \"version\": 1}\n"
+      "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10.0, \"width\": 4.0, "
+      "\"segments_length\": 10, \"segments_width\": 4}\n"
+      "{\"op\": \"generate\", \"object\": \"s\", \"append\": true, \"shape\": \"strip\", \"length\": 10.0, "
+      "\"width\": 4.0, \"segments_length\": 10, \"segments_width\": 6, \"translate\": [30.0, 0.0, 5.0]}\n"
+      "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.0, "
+      "\"thickness\": 0.2}\n"
+      "{\"op\": \"fix\", \"object\": \"s\", \"plane\": {\"point\": [0, 0, 0], \"normal\": [1, 0, 0]}}\n"
+      "{\"op\": \"fix\", \"object\": \"s\", \"plane\": {\"point\": [40, 0, 5], \"normal\": [1, 0, 0]}}\n"
+      "{\"op\": \"join\", \"object\": \"s\", \"chains\": [{\"from\": [10, -2, 0], \"to\": [10, 2, 0]}, "
+      "{\"from\": [30, 2, 5], \"to\": [30, -2, 5]}]}\n"
+      "{\"op\": \"simulate\", \"relax\": {\"steps\": 1, \"max_iterations\": 1}}\n";
+  try {
+    sutura::testing::replay_text(session, dir);
+    FAIL() << "one Newton iteration cannot relax a 20 mm gap";
+  } catch (const SessionError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.line(), 8);
+    EXPECT_NE(m.find("relaxation failed at s = "), std::string::npos) << m;
+    EXPECT_NE(m.find(". Advice: relax in more, smaller increments"), std::string::npos) << m;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
