@@ -483,7 +483,8 @@ json Run::relax(const SimulateOp& op) {
   }
   if (r.cancelled) throw OpCancelled("relaxation cancelled at s = " + std::to_string(r.s_reached));
   if (!r.ok) {
-    const std::string advice = relaxation_advice(r.message, op.collapse_barrier, params.solver);
+    const std::string advice =
+        relaxation_advice(r.message, op.collapse_barrier, params.solver, params.s_end);
     throw std::runtime_error(advice.empty() ? r.message : r.message + ". " + advice);
   }
   for (SceneObject* o : objs) commit_pending_loads(*o);

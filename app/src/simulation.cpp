@@ -5,18 +5,22 @@
 namespace sutura::app {
 
 std::string relaxation_advice(const std::string& message, bool collapse_barrier,
-                              engine::RelaxationSolver solver) {
+                              engine::RelaxationSolver solver, double until) {
   const auto says = [&](const char* what) { return message.find(what) != std::string::npos; };
   if (says("collapsed a triangle") || says("non-finite") || says("exploded")) {
     if (!collapse_barrier)
       return "Advice: elements collapse where the relaxation gathers tissue; turn on the collapse "
              "barrier (\"collapse_barrier\": true; in the window: Simulate > Resist collapse "
              "(gathered tissue)), which keeps a triangle from folding through itself.";
-    if (solver == engine::RelaxationSolver::Static)
+    if (solver == engine::RelaxationSolver::Static && until >= 1.0)
       return "Advice: elements collapse even with the collapse barrier; relax statically only "
              "part of the way and the rest as damped dynamics (\"relax\": {\"until\": 0.6} "
              "then {\"solver\": \"dynamic\"}; in the window: Simulate > Static, then damped "
              "dynamics (flap)), whose inertia carries gathered tissue through.";
+    if (solver == engine::RelaxationSolver::Static)
+      return "Advice: the static part of the relaxation fails before it reaches its end; hand "
+             "over to the damped dynamics earlier (a smaller \"relax\": {\"until\": ...} "
+             "before the dynamic run), or check the plan as below if that fails too.";
     return "Advice: elements collapse with the barrier and damped dynamics too: the plan "
            "gathers more tissue than the wall can take up. Check that the sutured chains run "
            "the same way and are of similar length, and that a patch is wide enough for the "
@@ -24,8 +28,9 @@ std::string relaxation_advice(const std::string& message, bool collapse_barrier,
   }
   if (says("no convergence in"))
     return "Advice: relax in more, smaller increments (\"relax\": {\"steps\": ...}; in the "
-           "window: Simulate > relax steps).";
-  if (says("singular"))
+           "window: Simulate > relax steps), or allow more Newton iterations per increment "
+           "(\"relax\": {\"max_iterations\": ...}).";
+  if (says("tangent stiffness is singular"))
     return "Advice: the object can move freely; hold it (the fix op; in the window: Plan > Fix "
            "ends).";
   return {};

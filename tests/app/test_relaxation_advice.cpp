@@ -18,31 +18,39 @@ const std::string kCollapsed =
     "collapsed a triangle (area below 0.01 of its rest area); rolled back to s = 0.7";
 
 TEST(RelaxationAdvice, CollapsingElementsGetTheBarrierThenTheFlapMethodThenThePlan) {
-  const std::string first = relaxation_advice(kCollapsed, false, RelaxationSolver::Static);
+  const std::string first = relaxation_advice(kCollapsed, false, RelaxationSolver::Static, 1.0);
   EXPECT_EQ(first.rfind("Advice: ", 0), 0u) << first;
   EXPECT_NE(first.find("\"collapse_barrier\": true"), std::string::npos) << first;
   EXPECT_NE(first.find("Resist collapse (gathered tissue)"), std::string::npos) << first;
-  const std::string second = relaxation_advice(kCollapsed, true, RelaxationSolver::Static);
+  const std::string second = relaxation_advice(kCollapsed, true, RelaxationSolver::Static, 1.0);
   EXPECT_NE(second.find("\"solver\": \"dynamic\""), std::string::npos) << second;
   EXPECT_NE(second.find("Static, then damped dynamics (flap)"), std::string::npos) << second;
-  const std::string third = relaxation_advice(kCollapsed, true, RelaxationSolver::Dynamic);
+  // The flap method's static part (to s = 0.6) already is what the second advice proposes.
+  const std::string flap_first = relaxation_advice(kCollapsed, true, RelaxationSolver::Static, 0.6);
+  EXPECT_EQ(flap_first.find("Static, then damped dynamics (flap)"), std::string::npos) << flap_first;
+  EXPECT_NE(flap_first.find("earlier"), std::string::npos) << flap_first;
+  const std::string third = relaxation_advice(kCollapsed, true, RelaxationSolver::Dynamic, 1.0);
   EXPECT_NE(third.find("patch is wide enough"), std::string::npos) << third;
   EXPECT_NE(relaxation_advice("dynamics step 3 of 80 failed: the strain energy exploded (1e9 N*mm)",
-                              true, RelaxationSolver::Dynamic),
+                              true, RelaxationSolver::Dynamic, 1.0),
             "");
 }
 
 TEST(RelaxationAdvice, OtherFailuresGetTheirOwnAdviceOrNone) {
   EXPECT_NE(relaxation_advice("static solve failed at load factor 1: no convergence in 1 Newton "
                               "iterations",
-                              false, RelaxationSolver::Static)
+                              false, RelaxationSolver::Static, 1.0)
                 .find("\"steps\""),
             std::string::npos);
   EXPECT_NE(relaxation_advice("the tangent stiffness is singular (is the structure constrained?)",
-                              false, RelaxationSolver::Static)
+                              false, RelaxationSolver::Static, 1.0)
                 .find("Fix ends"),
             std::string::npos);
-  EXPECT_EQ(relaxation_advice("the linear solve failed: out of memory", false, RelaxationSolver::Static), "");
+  EXPECT_EQ(relaxation_advice("the linear solve failed: out of memory", false, RelaxationSolver::Static, 1.0), "");
+  // Dynamics' singular step matrix is not a missing hold.
+  EXPECT_EQ(relaxation_advice("dynamics step 1 of 80 failed: the step matrix is singular", false,
+                              RelaxationSolver::Dynamic, 1.0),
+            "");
 }
 
 // Two strips 20 mm apart sutured and relaxed in one increment of one Newton iteration: the

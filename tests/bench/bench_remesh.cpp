@@ -42,12 +42,10 @@ void BM_Incise(benchmark::State& state) {
 BENCHMARK(BM_Incise)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
 
 // The remesh alone: the band of two edge lengths around the curve's chord polyline on the
-// fine arch, uniform at its own spacing. Arg: RemeshParams::raise_angles_below_deg (25 is the
-// default, 0 turns the raising of thin faces' corners off: its cost is the difference).
+// fine arch, uniform at its own spacing.
 void BM_RemeshBand(benchmark::State& state) {
   const SurfaceMesh& m = arch(true);
   RemeshParams p;
-  p.raise_angles_below_deg = double(state.range(0));
   p.target_edge_length = mean_edge_length(m);
   p.region = faces_near_polyline(m, kCurve, 2.0 * p.target_edge_length);
   RemeshResult r;
@@ -59,7 +57,7 @@ void BM_RemeshBand(benchmark::State& state) {
   state.counters["band_faces"] = double(p.region->size());
   state.counters["band_min_angle"] = r.after.min_angle_deg;
 }
-BENCHMARK(BM_RemeshBand)->Arg(0)->Arg(25)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RemeshBand)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -201,11 +201,12 @@ void view_captions(const GuiState& s, float view_width) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const float y = ImGui::GetFrameHeight() + 8.0f;
   const ImU32 colour = IM_COL32(40, 40, 40, 255);
+  const float left = s.view_left + kViewCubeCorner + 4.0f;  // right of the view cube
   if (s.side_by_side) {
-    draw->AddText(ImVec2(s.view_left + 12.0f, y), colour, "Before");
+    draw->AddText(ImVec2(left, y), colour, "Before");
     draw->AddText(ImVec2(s.view_left + 0.5f * view_width + 12.0f, y), colour, "After");
   } else {
-    draw->AddText(ImVec2(s.view_left + 12.0f, y), colour, s.show_before ? "Before" : "After");
+    draw->AddText(ImVec2(left, y), colour, s.show_before ? "Before" : "After");
   }
 }
 

@@ -46,7 +46,7 @@ void menu_bar(GuiState& s) {
     ImGui::EndMenu();
   }
   // Standard views in the menu bar, outside the 3-D view, so that they never cover the vessel
-  // or take a click meant for it.
+  // or take a click meant for it (the view cube takes the clicks in its corner square only).
   ImGui::TextDisabled("|  View from:");
   for (const StandardView v : kStandardViews)
     if (gated_button(s.widgets, to_string(v), std::nullopt)) s.fit_requested = true, s.view_requested = v;

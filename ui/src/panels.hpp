@@ -27,7 +27,9 @@ void message_window(GuiState& s);
 /// The view cube in the 3-D view's top-left corner (kViewCubeCorner pixels square, below the
 /// menu bar): a cube turned as the camera is, its faces named A, P, L, R, S, I (anterior ...
 /// inferior, the patient frame of docs/anatomy.md); clicking a face looks from there, as
-/// View from does. Each visible face is noted as "view cube " + to_string(view).
+/// View from does. Each face seen head-on or obliquely (not edge-on: more than a fifth of
+/// its area showing) is noted as "view cube " + to_string(view); the square takes every
+/// click inside it.
 void view_cube(GuiState& s);
 inline constexpr float kViewCubeCorner = 112.0f;
 

@@ -217,8 +217,8 @@ int collapse_needles(Mesh& mesh, EdgeMap& constrained, VertexMap& fixed, IdMap& 
 // in its tangent plane (eight directions, from a quarter of its mean edge length, halved down
 // to a sixty-fourth), each trial point projected onto the input. A move is kept only when it
 // raises that smallest angle and turns no face's normal by more than about 78 degrees. Only
-// faces around a moved vertex change, and the smallest angle among them only rises, so the
-// band's smallest angle never falls. At most 32 trials of eight points per vertex.
+// faces around a moved vertex change (a face there may get worse, never below the new
+// smallest angle among them, which only rises), so the band's smallest angle never falls. At most 32 trials of eight points per vertex.
 // Deterministic: faces in index order, corners in face order. Returns the vertices moved.
 template <class VertexMap, class FaceMap, class OnPolyline, class Project>
 int raise_smallest_angles(Mesh& mesh, const VertexMap& fixed, const FaceMap& in_region,

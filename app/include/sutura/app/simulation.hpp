@@ -21,13 +21,16 @@ namespace sutura::app {
 /// "corotational" (default, 6 DOF) | "discrete" (3 DOF); throws std::invalid_argument.
 std::unique_ptr<engine::ShellModel> make_model(const std::string& name);
 
-/// What to change after a relaxation failed with the engine's `message` under these settings,
-/// in plain words with the session field and the window's control that change it ("Advice:
-/// ...", one or two sentences), or empty when the message names no cause it can advise on. Collapsing or exploding elements: first the collapse barrier, then (static) the flap
-/// method of static then damped dynamics, then the plan itself; no convergence: more
-/// increments; a singular tangent: hold the object.
+/// What to change after a relaxation (to s = `until`) failed with the engine's `message`
+/// under these settings, in plain words with the session field and the window's control that
+/// change it ("Advice: ...", one or two sentences), or empty when the message names no cause
+/// it can advise on. Collapsing or exploding elements: first the collapse barrier; with it, a
+/// static relaxation to 1 is advised the flap method (static part of the way, then damped
+/// dynamics), one that stops short of 1 (the flap method's first part) an earlier switch to
+/// dynamics; with dynamics too, the plan itself. No Newton convergence: more increments or
+/// iterations. A singular tangent stiffness: hold the object.
 std::string relaxation_advice(const std::string& message, bool collapse_barrier,
-                              engine::RelaxationSolver solver);
+                              engine::RelaxationSolver solver, double until);
 
 class MergedSystem {
  public:

@@ -61,11 +61,13 @@ struct RemeshParams {
   std::vector<Vec3> grading_curve;
   int iterations = 3;  ///< >= 1, CGAL iterations per band
   /// Degrees, in [0, 40]: after the bands, a free corner (not fixed, on no constrained
-  /// polyline nor open boundary) of a remeshed face with a smaller angle is moved on the
-  /// surface where the smallest angle of its faces is largest, only if that raises it; the
-  /// region's smallest angle never falls. Faces at or above it are left as CGAL made them.
-  /// 0: off. The default 25 keeps element shapes above 20 degrees through the deformation
-  /// that follows in the sessions measured in docs/remeshing.md.
+  /// polyline nor open boundary, all its faces in the region) of a remeshed face with a
+  /// smaller angle is moved on the surface to where a local search finds the smallest angle
+  /// of its faces largest, only if that raises it. Only faces around a moved corner (and
+  /// pairs flipped afterwards) change, and the smallest angle among them only rises: the
+  /// region's smallest angle never falls. Where no face is below it, nothing changes. 0: off.
+  /// The default 25 leaves a margin above 20 degrees for the rest shapes the state transfer
+  /// gives, which the remesher does not see (docs/remeshing.md).
   double raise_angles_below_deg = 25.0;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
@@ -119,8 +121,9 @@ RemeshParams band_around(const SurfaceMesh& mesh, const std::vector<std::vector<
 /// Throws InvalidArgument naming the field for: target_edge_length <= 0 or non-finite or
 /// larger than the region's extent ("target_edge_length"), a region face out of range or a
 /// region without faces ("region"), grading < 1 ("grading"), iterations < 1 or > 100
-/// ("iterations"), a constrained edge that is not an edge ("constrained_edges"), a
-/// constrained-vertex list of the wrong size ("constrained_vertices"). The mesh passed in is
+/// ("iterations"), raise_angles_below_deg outside [0, 40] ("raise_angles_below_deg"), a
+/// constrained edge that is not an edge ("constrained_edges"), a constrained-vertex list of
+/// the wrong size ("constrained_vertices"). The mesh passed in is
 /// never changed. Cost: O(F_region * iterations * log F) per band.
 RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params);
 
