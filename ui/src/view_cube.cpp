@@ -66,7 +66,10 @@ void view_cube(GuiState& s) {
   const ImVec2 centre(corner.x + 0.5f * size, corner.y + 0.5f * size);
   // A unit half-edge projects to at most sqrt(3) of this: the cube stays inside its square.
   const float scale = 0.28f * size;
-  const auto [right, up, forward] = s.camera.view_axes();
+  // Named copies, not a structured binding: a lambda may not capture one before C++20 as
+  // clang 14 (the sanitized build) implements it.
+  const std::array<Vec3, 3> axes = s.camera.view_axes();
+  const Vec3 right = axes[0], up = axes[1], forward = axes[2];
   const auto on_screen = [&](const Vec3& p) {
     return ImVec2(centre.x + scale * float(p.dot(right)), centre.y - scale * float(p.dot(up)));
   };
