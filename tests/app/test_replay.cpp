@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
@@ -346,22 +347,21 @@ TEST(Replay, ObjectChecksReadTheReportsQuantities) {
     ADD_FAILURE() << "no error for " << check;
     return std::string();
   };
-  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"quantity\": "
-                    "\"rest_quality.min_angle_deg\", \"range\": [50, 90]}")
-                .find("check failed: object 'a' rest_quality.min_angle_deg = 45"),
-            std::string::npos);
-  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"quality.nope\", "
-                    "\"range\": [0, 1]}")
-                .find("object 'a' has no quantity 'quality.nope'"),
-            std::string::npos);
-  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"b\", \"quantity\": \"faces\", "
-                    "\"range\": [0, 1]}")
-                .find("no object named 'b'"),
-            std::string::npos);
-  EXPECT_NE(failure("{\"op\": \"check\", \"object\": \"a\", \"probe\": \"p\", "
-                    "\"quantity\": \"ux\", \"value\": 0, \"abs_tol\": 1}")
-                .find("give one of probe, measurement or object"),
-            std::string::npos);
+  // Each check line, and what its error must say.
+  const std::pair<const char*, const char*> refused[] = {
+      {"{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"rest_quality.min_angle_deg\", "
+       "\"range\": [50, 90]}",
+       "check failed: object 'a' rest_quality.min_angle_deg = 45"},
+      {"{\"op\": \"check\", \"object\": \"a\", \"quantity\": \"quality.nope\", \"range\": [0, 1]}",
+       "object 'a' has no quantity 'quality.nope'"},
+      {"{\"op\": \"check\", \"object\": \"b\", \"quantity\": \"faces\", \"range\": [0, 1]}",
+       "no object named 'b'"},
+      {"{\"op\": \"check\", \"object\": \"a\", \"probe\": \"p\", \"quantity\": \"ux\", "
+       "\"value\": 0, \"abs_tol\": 1}",
+       "give one of probe, measurement or object"},
+  };
+  for (const auto& [check, says] : refused)
+    EXPECT_NE(failure(check).find(says), std::string::npos) << check;
   fs::remove_all(dir);
 }
 

@@ -300,9 +300,8 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
               cut, refused, worst_angle, below_20, worst_lip);
   EXPECT_GT(cut, curves * 8 / 10);
   // The smallest angles below 20 degrees that remain are forced by the drawing: a cut that ends
-  // or runs within a fraction of an edge of an open end, or meets it at a grazing angle. (Before
-  // thin faces' corners were raised, 2026-12-06: 29 of the first seed's bands; now 5, and 7 of
-  // the second's.)
+  // or runs within a fraction of an edge of an open end, or meets it at a grazing angle
+  // (docs/remeshing.md gives the counts).
   EXPECT_LE(below_20, cut / 80);
   EXPECT_LT(worst_lip, 1e-6);
 }
