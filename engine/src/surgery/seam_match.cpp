@@ -306,6 +306,21 @@ std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& 
   return at;
 }
 
+// The boundary's turn at boundary vertex v in the surface, degrees: |180 - the sum of its
+// faces' angles at v| (0 on a straight run, about 180 at the tip of a slit). O(valence).
+double boundary_turn_deg(const SurfaceMesh& mesh, VertexId v) {
+  double sum = 0.0;
+  for (const FaceId f : mesh.vertex_faces(v)) {
+    const auto c = mesh.face_vertices(f);
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    const Vec3 p = mesh.position(c[std::size_t(k)]);
+    const Vec3 e1 = mesh.position(c[std::size_t((k + 1) % 3)]) - p;
+    const Vec3 e2 = mesh.position(c[std::size_t((k + 2) % 3)]) - p;
+    sum += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+  }
+  return std::abs(180.0 - sum * 180.0 / M_PI);
+}
+
 }  // namespace
 
 MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
@@ -324,6 +339,13 @@ MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>&
     if (h.valid() && mesh.is_boundary(h)) continue;  // along a chain: its inner vertices may go
     held[u.index()] = held[w.index()] = true;
   }
+  // Sharp corners of a chain (the tip of a slit) are breakpoints too: collapsing the tip into
+  // a lip neighbour shortens the incision, and where the fold test refuses that collapse the
+  // tip stays between two common points, unmatched, and the join refuses the pair.
+  for (const SuturePair& p : pairs)
+    for (const BoundaryChain* c : {&p.a, &p.b})
+      for (std::size_t i = c->closed ? 0 : 1; i + (c->closed ? 0 : 1) < c->vertices.size(); ++i)
+        if (boundary_turn_deg(mesh, c->vertices[i]) > params.corner_turn_deg) held[c->vertices[i].index()] = true;
   std::vector<ChainResample> chains;
   double finest = HUGE_VAL;
   // Sizes first: the common points read both per face (found out of bounds by ASan).

@@ -8,6 +8,7 @@
 
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/generators.hpp"
+#include "sutura/engine/surgery/incise.hpp"
 
 namespace sutura::engine {
 namespace {
@@ -147,6 +148,45 @@ TEST(SeamMatch, TheEndOfAConstrainedPolylineOnAChainIsABreakpoint) {
   ResampleChainsParams params;
   params.constrained_edges = {{end, inner}};
   expect_breakpoint_kept(s, params, end);
+}
+
+TEST(SeamMatch, TheTipOfASlitOnAChainIsKeptAsABreakpoint) {
+  // A strip slit from its right edge 3.7 mm inward; chain a runs up that edge, along the
+  // lower lip to the slit's tip, back along the upper lip and on up the edge (11.4 mm, the
+  // tip at 0.52 of it), sewn to the 11.4 mm edge of a plain strip. The tip must stay where
+  // it was cut: as a breakpoint.
+  const IncisionResult slit = incise(make_strip({10.0, 4.0, 20, 8}), {Vec3(10, 0.2, 0), Vec3(6.3, 0.2, 0)});
+  const SurfaceMesh mesh = side_by_side(slit.mesh, make_strip({10.0, 11.4, 10, 12}), Vec3(10.0 + kGap, 0, 0));
+  ChainSpec a;
+  a.from = {10, -2, 0};
+  a.to = {10, 2, 0};
+  a.via = Vec3(6.3, 0.2, 0);
+  const SuturePair pair{find_boundary_chain(mesh, a), chain(mesh, {10 + kGap, 5.7, 0}, {10 + kGap, -5.7, 0})};
+  VertexId tip;
+  for (const VertexId v : pair.a.vertices)
+    if ((mesh.position(v) - Vec3(6.3, 0.2, 0)).norm() < 1e-9) tip = v;
+  ASSERT_TRUE(tip.valid());
+
+  // The deepest point of the slit after matching (x = 6.3 while the tip is kept).
+  const auto deepest = [&](const MatchedSeams& m) {
+    double x = 10.0;
+    for (const VertexId v : m.pairs[0].a.vertices) x = std::min(x, m.edit.mesh.position(v).x());
+    return x;
+  };
+  const MatchedSeams m = match_seams(mesh, {pair}, {});
+  ASSERT_TRUE(m.edit.mesh.validate().ok()) << m.edit.mesh.validate().summary();
+  ASSERT_EQ(m.pairs[0].a.vertices.size(), m.pairs[0].b.vertices.size());
+  bool kept = false;
+  for (const VertexId v : m.pairs[0].a.vertices) kept = kept || m.edit.mesh.position(v) == mesh.position(tip);
+  EXPECT_TRUE(kept);
+  EXPECT_EQ(deepest(m), 6.3);
+  const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
+  EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
+
+  // Without the corner rule the tip is collapsed into a lip neighbour: the slit is shorter.
+  ResampleChainsParams no_corners;
+  no_corners.corner_turn_deg = 1000.0;
+  EXPECT_GT(deepest(match_seams(mesh, {pair}, no_corners)), 6.3 + 0.1);
 }
 
 TEST(SeamMatch, FrozenFacesAreLeftAsTheyAreAndTheirChainEdgesWhole) {

@@ -55,6 +55,12 @@ struct ResampleChainsParams {
   /// once it has relaxed, not as it lies (a gusset base laid at a third of its length left
   /// 0.14 mm edges on the rim sutured to it). Other edges count at their current length.
   std::vector<std::array<double, 3>> rest_edge_lengths;
+  /// Degrees, match_seams only: an inner chain vertex where the boundary turns by more than
+  /// this in the surface (|180 - its faces' angle sum|; about 180 at a slit's tip) is a
+  /// breakpoint, kept where it is. A milder corner (a lip meeting an open end: about 90) may
+  /// be collapsed into a chain neighbour, cutting it by up to one seam spacing: kept as well,
+  /// it would leave short seam pieces beside the other chain's breakpoints (docs/remeshing.md).
+  double corner_turn_deg = 120.0;
 };
 
 struct ResampleChainsResult {
