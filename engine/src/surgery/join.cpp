@@ -109,22 +109,33 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
   // Where both chains end at one shared vertex e (a slit end, or the corner where a flap
   // meets its bed), the suture closes e's fan like a cone: the faces of e between its two
   // chain edges close up around it, which needs at least three of them (with two, merging the
-  // neighbours would stack both faces onto one edge; with one, collapse it). Too small a fan
-  // gets a vertex on its outer edge, which adds one face at e each time.
+  // neighbours would stack both faces onto one edge). Too small a fan gets a vertex on the
+  // outer edge of its face with the widest angle at e, where that angle's bisector meets it,
+  // which adds one face at e each time and halves that angle: the cone's faces stay as wide
+  // as they can (docs/remeshing.md, the subclavian flap).
   auto widen_fan = [&soup](int e) {
     for (int guard = 0; guard < 4; ++guard) {
-      int count = 0, first = -1;
-      for (std::size_t f = 0; f < soup.num_faces(); ++f)
-        for (const int c : soup.face(f))
-          if (c == e) {
+      int count = 0, widest = -1;
+      double widest_angle = -1.0;
+      for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+        const FaceIndices& t = soup.face(f);
+        for (int k = 0; k < 3; ++k)
+          if (t[k] == e) {
             ++count;
-            if (first < 0) first = int(f);
+            const Vec3 u = soup.position(t[(k + 1) % 3]) - soup.position(e);
+            const Vec3 w = soup.position(t[(k + 2) % 3]) - soup.position(e);
+            const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
+            if (angle > widest_angle) widest_angle = angle, widest = int(f);
           }
-      if (count >= 3 || first < 0) return;
-      const FaceIndices& t = soup.face(first);
+      }
+      if (count >= 3 || widest < 0) return;
+      const FaceIndices& t = soup.face(widest);
       int k = 0;
       while (t[k] != e) ++k;
-      soup.split_edge(t[(k + 1) % 3], t[(k + 2) % 3], 0.5);
+      const int u = t[(k + 1) % 3], w = t[(k + 2) % 3];
+      const double lu = (soup.position(u) - soup.position(e)).norm();
+      const double lw = (soup.position(w) - soup.position(e)).norm();
+      soup.split_edge(u, w, lu / (lu + lw));  // the bisector divides uw as eu : ew
     }
   };
   for (const auto& [a, b] : pairs) {

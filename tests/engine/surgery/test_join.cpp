@@ -275,6 +275,21 @@ TEST(Join, ClosingASmallFanAtASharedEndWidensItFirst) {
   ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
   EXPECT_FALSE(r.mesh.is_boundary(VertexId(0)));  // e is now inside the closed cone
   EXPECT_GE(r.mesh.vertex_faces(VertexId(0)).size(), 3u);
+  // The face with the wider angle at e (e-w-y: 54.0 against 38.3 degrees for e-x-w) is split
+  // where that angle's bisector meets its outer edge w-y, dividing it as |ew| : |ey|.
+  const double t = (x[6] - x[0]).norm() / ((x[6] - x[0]).norm() + (x[5] - x[0]).norm());
+  int on_wy = 0, on_xw = 0;
+  for (const VertexOrigin& o : r.maps.vertices) {
+    if (o.kind != VertexOriginKind::Interpolated || o.parents.size() != 2) continue;
+    const int p0 = o.parents[0].value, p1 = o.parents[1].value;
+    if ((p0 == 1 && p1 == 6) || (p0 == 6 && p1 == 1)) ++on_xw;
+    if ((p0 == 6 && p1 == 5) || (p0 == 5 && p1 == 6)) {
+      ++on_wy;
+      EXPECT_NEAR(o.weights[p0 == 5 ? 0 : 1], t, 1e-12);
+    }
+  }
+  EXPECT_EQ(on_wy, 1);
+  EXPECT_EQ(on_xw, 0);
 }
 
 TEST(Join, RejectsHeldFlagsOfTheWrongSize) {
