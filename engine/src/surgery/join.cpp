@@ -1,6 +1,7 @@
 #include "sutura/engine/surgery/join.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -135,7 +136,8 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
       const int u = t[(k + 1) % 3], w = t[(k + 2) % 3];
       const double lu = (soup.position(u) - soup.position(e)).norm();
       const double lw = (soup.position(w) - soup.position(e)).norm();
-      soup.split_edge(u, w, lu / (lu + lw));  // the bisector divides uw as eu : ew
+      // The bisector divides uw as eu : ew (a zero-area face: at its midpoint).
+      soup.split_edge(u, w, lu + lw > 0.0 ? lu / (lu + lw) : 0.5);
     }
   };
   for (const auto& [a, b] : pairs) {

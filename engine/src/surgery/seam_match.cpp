@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "sutura/engine/errors.hpp"
@@ -318,7 +319,7 @@ double boundary_turn_deg(const SurfaceMesh& mesh, VertexId v) {
     const Vec3 e2 = mesh.position(c[std::size_t((k + 2) % 3)]) - p;
     sum += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
   }
-  return std::abs(180.0 - sum * 180.0 / M_PI);
+  return std::abs(180.0 - sum * 180.0 / std::numbers::pi);
 }
 
 }  // namespace
@@ -339,13 +340,16 @@ MatchedSeams match_seams(const SurfaceMesh& mesh, const std::vector<SuturePair>&
     if (h.valid() && mesh.is_boundary(h)) continue;  // along a chain: its inner vertices may go
     held[u.index()] = held[w.index()] = true;
   }
+  if (!(params.corner_turn_deg >= 0.0))
+    throw InvalidArgument("match_seams: corner_turn_deg must be a number of degrees >= 0");
   // Sharp corners of a chain (the tip of a slit) are breakpoints too: collapsing the tip into
   // a lip neighbour shortens the incision, and where the fold test refuses that collapse the
   // tip stays between two common points, unmatched, and the join refuses the pair.
   for (const SuturePair& p : pairs)
     for (const BoundaryChain* c : {&p.a, &p.b})
       for (std::size_t i = c->closed ? 0 : 1; i + (c->closed ? 0 : 1) < c->vertices.size(); ++i)
-        if (boundary_turn_deg(mesh, c->vertices[i]) > params.corner_turn_deg) held[c->vertices[i].index()] = true;
+        if (boundary_turn_deg(mesh, c->vertices[i]) > params.corner_turn_deg)
+          held[c->vertices[i].index()] = true;
   std::vector<ChainResample> chains;
   double finest = HUGE_VAL;
   // Sizes first: the common points read both per face (found out of bounds by ASan).

@@ -167,7 +167,7 @@ TEST(SeamMatch, TheTipOfASlitOnAChainIsKeptAsABreakpoint) {
     if ((mesh.position(v) - Vec3(6.3, 0.2, 0)).norm() < 1e-9) tip = v;
   ASSERT_TRUE(tip.valid());
 
-  // The deepest point of the slit after matching (x = 6.3 while the tip is kept).
+  // The deepest point of the slit after matching (the tip's x while the tip is kept).
   const auto deepest = [&](const MatchedSeams& m) {
     double x = 10.0;
     for (const VertexId v : m.pairs[0].a.vertices) x = std::min(x, m.edit.mesh.position(v).x());
@@ -179,14 +179,17 @@ TEST(SeamMatch, TheTipOfASlitOnAChainIsKeptAsABreakpoint) {
   bool kept = false;
   for (const VertexId v : m.pairs[0].a.vertices) kept = kept || m.edit.mesh.position(v) == mesh.position(tip);
   EXPECT_TRUE(kept);
-  EXPECT_EQ(deepest(m), 6.3);
+  EXPECT_EQ(deepest(m), mesh.position(tip).x());
   const SutureReport r = join(m.edit.mesh, m.pairs).sutures[0];
   EXPECT_EQ(r.inserted_a + r.inserted_b, 0);
 
   // Without the corner rule the tip is collapsed into a lip neighbour: the slit is shorter.
   ResampleChainsParams no_corners;
   no_corners.corner_turn_deg = 1000.0;
-  EXPECT_GT(deepest(match_seams(mesh, {pair}, no_corners)), 6.3 + 0.1);
+  EXPECT_GT(deepest(match_seams(mesh, {pair}, no_corners)), mesh.position(tip).x() + 0.1);
+  ResampleChainsParams bad;
+  bad.corner_turn_deg = -1.0;
+  EXPECT_THROW(match_seams(mesh, {pair}, bad), InvalidArgument);
 }
 
 TEST(SeamMatch, FrozenFacesAreLeftAsTheyAreAndTheirChainEdgesWhole) {

@@ -55,11 +55,13 @@ struct ResampleChainsParams {
   /// once it has relaxed, not as it lies (a gusset base laid at a third of its length left
   /// 0.14 mm edges on the rim sutured to it). Other edges count at their current length.
   std::vector<std::array<double, 3>> rest_edge_lengths;
-  /// Degrees, match_seams only: an inner chain vertex where the boundary turns by more than
-  /// this in the surface (|180 - its faces' angle sum|; about 180 at a slit's tip) is a
-  /// breakpoint, kept where it is. A milder corner (a lip meeting an open end: about 90) may
-  /// be collapsed into a chain neighbour, cutting it by up to one seam spacing: kept as well,
-  /// it would leave short seam pieces beside the other chain's breakpoints (docs/remeshing.md).
+  /// Degrees, >= 0, match_seams only: an inner chain vertex where the boundary turns by more
+  /// than this in the surface (|180 - its faces' angle sum|: about 180 at a slit's tip, and
+  /// also at a needle-sharp spike) is a breakpoint like a held vertex (so, like one, dropped
+  /// when another breakpoint lies within a third of a piece). A milder corner (a lip meeting
+  /// an open end: about 90) may be collapsed into a chain neighbour, cutting it by up to one
+  /// seam spacing: kept as well, it would leave short seam pieces beside the other chain's
+  /// breakpoints (docs/remeshing.md).
   double corner_turn_deg = 120.0;
 };
 
@@ -92,10 +94,12 @@ int seam_segments(const SuturePair& pair, double length_a, double length_b, doub
 /// Resamples every pair's two chains to the same number of points at one set of fractions of
 /// their lengths, each edge counted at its current length or, for a frozen face's edge with
 /// params.rest_edge_lengths given, at its rest length (seam_segments pieces at its
-/// seam_spacing; held vertices of either chain, ends of constrained edges meeting it and
-/// vertices of frozen faces kept as breakpoints at their own fraction; no piece longer than
-/// 4/3 of the spacing), and remeshes around them, so that join(result.mesh, result.pairs) with
-/// JoinPairing::InOrder inserts no vertex. Same contract and cost as resample_chains.
+/// seam_spacing; held vertices of either chain, ends of constrained edges meeting it, sharp
+/// corners (params.corner_turn_deg) and vertices of frozen faces kept as breakpoints at their
+/// own fraction; no piece longer than 4/3 of the spacing), and remeshes around them, so that
+/// join(result.mesh, result.pairs) with JoinPairing::InOrder inserts no vertex. Throws
+/// InvalidArgument for a corner_turn_deg below 0 or not a number; otherwise the same contract
+/// and cost as resample_chains.
 struct MatchedSeams {
   ResampleChainsResult edit;
   std::vector<SuturePair> pairs;
