@@ -1,4 +1,5 @@
 // Parsers of the scene ops: generate, load, snapshot, export, report.
+#include <cmath>
 #include <map>
 
 #include "session_ops.hpp"
@@ -101,6 +102,21 @@ CameraSpec parse_camera(Fields& c) {
   return cam;
 }
 
+ClipSpec parse_clip(Fields& c) {
+  ClipSpec clip;
+  clip.point = c.required_vec3("point");
+  clip.normal = c.required_vec3("normal");
+  // Drawn in single precision: the point must stay finite there.
+  for (double x : clip.point)
+    if (!std::isfinite(static_cast<float>(x))) c.fail("point", "must be within +-1e38 mm");
+  const double len = std::sqrt(clip.normal[0] * clip.normal[0] + clip.normal[1] * clip.normal[1] +
+                               clip.normal[2] * clip.normal[2]);
+  if (!(len > 1e-12) || !std::isfinite(len)) c.fail("normal", "must not be the zero vector");
+  for (double& x : clip.normal) x /= len;
+  c.finish();
+  return clip;
+}
+
 SnapshotOp parse_snapshot(Fields& f) {
   SnapshotOp op;
   op.file = output_file(f, "file", {".png"});
@@ -128,6 +144,7 @@ SnapshotOp parse_snapshot(Fields& f) {
   op.marks = f.optional_bool("marks", op.marks);
   op.compare_rest = f.optional_choice("compare", "before", {"before", "rest"}) == "rest";
   if (op.compare_rest && !op.side_by_side) f.fail("compare", "needs side_by_side: true");
+  if (auto clip = f.optional_object("clip")) op.clip = parse_clip(*clip);
   return op;
 }
 

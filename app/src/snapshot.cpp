@@ -106,8 +106,10 @@ render::Image SnapshotRenderer::render(const SnapshotOp& op, const Workspace& wo
     cmap = c;
   }
 
-  const render::Scene after_scene = scene_of(after, cmap, op.wireframe);
-  const render::Scene before_scene = scene_of(before, cmap, op.wireframe);
+  render::Scene after_scene = scene_of(after, cmap, op.wireframe);
+  render::Scene before_scene = scene_of(before, cmap, op.wireframe);
+  if (op.clip)
+    after_scene.clip = before_scene.clip = render::ClipPlane{to_point(op.clip->point), to_point(op.clip->normal)};
 
   // Both views share one camera so before and after are directly comparable; each is drawn
   // left of the legend's column (only the right one draws the legend).

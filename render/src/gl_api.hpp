@@ -73,6 +73,7 @@ namespace sutura::render {
   X(PFNGLUNIFORM1IPROC, Uniform1i)                                           \
   X(PFNGLUNIFORM2FPROC, Uniform2f)                                           \
   X(PFNGLUNIFORM3FPROC, Uniform3f)                                           \
+  X(PFNGLUNIFORM4FPROC, Uniform4f)                                           \
   X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                             \
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \

@@ -4,7 +4,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -83,7 +85,24 @@ struct FrameSetup {
   std::array<float, 16> projection;
   float marker_bias;
   bool multisampled;
+  std::array<float, 4> clip;  ///< u_clip: (n, -n.p), or (0, 0, 0, -1) without a clip plane
 };
+
+// The scene's clip plane as the shaders' u_clip. Throws std::invalid_argument for a
+// non-finite point or normal, or a zero normal.
+std::array<float, 4> clip_uniform(const Scene& scene) {
+  if (!scene.clip) return {0.0f, 0.0f, 0.0f, -1.0f};
+  const Point3& p = scene.clip->point;
+  const Point3& n = scene.clip->normal;
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(p[k]) || !std::isfinite(n[k]))
+      throw std::invalid_argument("clip plane: the point and the normal must be finite");
+  const float len = length(n);
+  if (!(len > 0.0f) || !std::isfinite(len))
+    throw std::invalid_argument("clip plane: the normal must not be zero");
+  const Point3 u = {n[0] / len, n[1] / len, n[2] / len};
+  return {u[0], u[1], u[2], -(u[0] * p[0] + u[1] * p[1] + u[2] * p[2])};
+}
 
 }  // namespace
 
@@ -187,9 +206,10 @@ struct Renderer::Impl {
     return surfaces[i];
   }
 
-  static void set_matrices(const GlApi& gl, const ShaderProgram& p, const FrameSetup& f) {
+  static void set_frame_uniforms(const GlApi& gl, const ShaderProgram& p, const FrameSetup& f) {
     gl.UniformMatrix4fv(p.uniform("u_view"), 1, GL_FALSE, f.view.data());
     gl.UniformMatrix4fv(p.uniform("u_projection"), 1, GL_FALSE, f.projection.data());
+    gl.Uniform4f(p.uniform("u_clip"), f.clip[0], f.clip[1], f.clip[2], f.clip[3]);
   }
 
   void draw_surfaces(const Scene& scene, const FrameSetup& f) {
@@ -212,7 +232,7 @@ struct Renderer::Impl {
 
       const ShaderProgram& surface = programs.surface;
       surface.use();
-      set_matrices(gl, surface, f);
+      set_frame_uniforms(gl, surface, f);
       gl.Uniform3f(surface.uniform("u_color"), item.color[0], item.color[1], item.color[2]);
       gl.Uniform1i(surface.uniform("u_use_scalars"), item.scalars.empty() ? 0 : 1);
       gl.Uniform1i(surface.uniform("u_colormap"), 0);
@@ -222,7 +242,7 @@ struct Renderer::Impl {
       if (item.wireframe) {
         const ShaderProgram& wire = programs.wire;
         wire.use();
-        set_matrices(gl, wire, f);
+        set_frame_uniforms(gl, wire, f);
         gl.Uniform3f(wire.uniform("u_color"), item.wire_color[0], item.wire_color[1],
                      item.wire_color[2]);
         gl.DepthFunc(GL_LEQUAL);
@@ -247,7 +267,7 @@ struct Renderer::Impl {
                            marker_scratch.size() * sizeof(MarkerVertex));
     const ShaderProgram& p = programs.marker;
     p.use();
-    set_matrices(gl, p, f);
+    set_frame_uniforms(gl, p, f);
     gl.Uniform1f(p.uniform("u_depth_bias"), f.marker_bias);
     gl.Uniform2f(p.uniform("u_viewport"), static_cast<float>(width), static_cast<float>(height));
     gl.Uniform1i(p.uniform("u_multisampled"), f.multisampled ? 1 : 0);
@@ -289,6 +309,7 @@ struct Renderer::Impl {
                   bool multisampled, const RenderOptions& options, int x0 = 0, int y0 = 0) {
     // Everything that can reject the input comes before the first GL state change.
     for (const SurfaceItem& item : scene.surfaces) validate_surface(item);
+    const std::array<float, 4> clip = clip_uniform(scene);
     const std::array<Point3, 2> bounds = scene_bounds(scene);
     const bool legend = options.draw_legend && scene.color_map && scene.color_map->show_legend;
     // The scene is drawn left of the legend's column, never under it.
@@ -298,7 +319,7 @@ struct Renderer::Impl {
     const float radius = 0.5f * length(bounds[1] - bounds[0]);
     const FrameSetup frame{view_matrix(camera),
                            projection_matrix(camera, aspect, depth[0], depth[1]),
-                           kMarkerDepthBias * radius, multisampled};
+                           kMarkerDepthBias * radius, multisampled, clip};
 
     gl.Viewport(x0, y0, width, height);
     gl.ClearColor(srgb_from_linear(scene.background[0]), srgb_from_linear(scene.background[1]),

@@ -28,6 +28,11 @@ vec3 colormap(float t) {
 
 // Vertices without a finite scalar are drawn in this linear grey.
 const vec3 kNoValue = vec3(0.35);
+
+// The scene's clip plane (n, -n.p): world points with dot(u_clip, (x, 1)) > 0 are cut away.
+// Without one the renderer sets (0, 0, 0, -1), which keeps everything.
+uniform vec4 u_clip;
+bool cut_away(vec3 world) { return dot(u_clip, vec4(world, 1.0)) > 0.0; }
 )";
 
 constexpr const char* kSurfaceVertex = R"(
@@ -39,9 +44,11 @@ uniform mat4 u_projection;
 out vec3 v_position;  // view space
 out vec3 v_normal;    // view space, not normalised
 out float v_scalar;
+out vec3 v_world;
 void main() {
   vec4 p = u_view * vec4(a_position, 1.0);
   v_position = p.xyz;
+  v_world = a_position;
   v_normal = mat3(u_view) * a_normal;  // the view matrix is a rigid motion
   v_scalar = a_scalar;
   gl_Position = u_projection * p;
@@ -55,6 +62,7 @@ constexpr const char* kSurfaceFragment = R"(
 in vec3 v_position;
 in vec3 v_normal;
 in float v_scalar;
+in vec3 v_world;
 uniform vec3 u_color;
 uniform bool u_use_scalars;
 const vec3 kLightDir = normalize(vec3(-0.35, 0.45, 1.0));
@@ -63,6 +71,7 @@ const float kDiffuse = 0.78;
 const float kSpecular = 0.15;
 const float kShininess = 40.0;
 void main() {
+  if (cut_away(v_world)) discard;
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 to_eye = normalize(-v_position);
@@ -79,12 +88,20 @@ constexpr const char* kWireVertex = R"(
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_view;
 uniform mat4 u_projection;
-void main() { gl_Position = u_projection * (u_view * vec4(a_position, 1.0)); }
+out vec3 v_world;
+void main() {
+  v_world = a_position;
+  gl_Position = u_projection * (u_view * vec4(a_position, 1.0));
+}
 )";
 
 constexpr const char* kWireFragment = R"(
+in vec3 v_world;
 uniform vec3 u_color;
-void main() { o_color = vec4(srgb_from_linear(u_color), 1.0); }
+void main() {
+  if (cut_away(v_world)) discard;
+  o_color = vec4(srgb_from_linear(u_color), 1.0);
+}
 )";
 
 // Polyline segments and round discs (markers.hpp), expanded to screen-space quads here.
@@ -107,6 +124,7 @@ uniform vec2 u_viewport;  // pixels
 out vec3 v_color;
 out vec2 v_offset_px;        // disc: from the centre
 flat out float v_radius_px;  // disc radius; < 0 for segments
+out vec3 v_world;            // the segment's end (interpolated along it) or the disc's centre
 
 vec4 biased_clip(vec3 world) {
   vec4 p = u_view * vec4(world, 1.0);
@@ -119,6 +137,7 @@ void main() {
   vec2 half_viewport = 0.5 * u_viewport;
   v_color = a_color;
   vec4 c0 = biased_clip(a_from);
+  v_world = a_corner.x < 0.5 || a_disc > 0.5 ? a_from : a_to;
   if (a_disc > 0.5) {
     // One pixel beyond the rim, so the fragment shader can fade the edge.
     v_offset_px = a_corner * (0.5 * a_size_px + 1.0);
@@ -154,8 +173,10 @@ constexpr const char* kMarkerFragment = R"(
 in vec3 v_color;
 in vec2 v_offset_px;
 flat in float v_radius_px;
+in vec3 v_world;
 uniform bool u_multisampled;
 void main() {
+  if (cut_away(v_world)) discard;
   float coverage = 1.0;
   if (v_radius_px >= 0.0) coverage = clamp(v_radius_px - length(v_offset_px) + 0.5, 0.0, 1.0);
   if (coverage <= (u_multisampled ? 0.0 : 0.5)) discard;

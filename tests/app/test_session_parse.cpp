@@ -43,7 +43,8 @@ TEST(SessionParse, AllOpsWithFieldsAndLineNumbers) {
       "{\"op\": \"load\", \"object\": \"pa\", \"file\": \"../meshes/pa.stl\"}\n"
       "{\"op\": \"snapshot\", \"file\": \"shots/a.png\", \"width\": 320, \"height\": 200, "
       "\"field\": \"z\", \"range\": [0, 5], \"side_by_side\": true, "
-      "\"camera\": {\"view\": [0, 1, 0], \"fov_deg\": 40}}\n"
+      "\"camera\": {\"view\": [0, 1, 0], \"fov_deg\": 40}, "
+      "\"clip\": {\"point\": [1, 2, 3], \"normal\": [0, 0, -2]}}\n"
       "{\"op\": \"export\", \"object\": \"aorta\", \"file\": \"aorta.ply\", \"note\": \"final\"}\n"
       "{\"op\": \"report\", \"file\": \"r.json\"}\n");
   ASSERT_EQ(s.actions.size(), 5u);
@@ -65,6 +66,11 @@ TEST(SessionParse, AllOpsWithFieldsAndLineNumbers) {
   EXPECT_TRUE(snap.side_by_side);
   EXPECT_DOUBLE_EQ(snap.camera.view[1], 1.0);
   EXPECT_DOUBLE_EQ(snap.camera.fov_deg, 40.0);
+  ASSERT_TRUE(snap.clip.has_value());
+  EXPECT_DOUBLE_EQ(snap.clip->point[1], 2.0);
+  EXPECT_DOUBLE_EQ(snap.clip->normal[2], -1.0);  // normalised
+  EXPECT_FALSE(std::get<SnapshotOp>(parse("{\"op\": \"snapshot\", \"file\": \"b.png\"}\n")
+                                        .actions[0].op).clip.has_value());
   EXPECT_EQ(std::get<ExportOp>(s.actions[3].op).file, std::filesystem::path("aorta.ply"));
 }
 
@@ -149,6 +155,15 @@ INSTANTIATE_TEST_SUITE_P(
                 2, "camera.zoom", "unknown field"},
         BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"range\": [0, 1]}\n", 2,
                 "range", "colour field"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"clip\": "
+                          "{\"point\": [0, 0, 0], \"normal\": [0, 0, 0]}}\n",
+                2, "clip.normal", "zero vector"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"clip\": "
+                          "{\"normal\": [0, 0, 1]}}\n",
+                2, "clip.point", "missing"},
+        BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"clip\": "
+                          "{\"point\": [1e39, 0, 0], \"normal\": [0, 0, 1]}}\n",
+                2, "clip.point", "1e38"},
         BadCase{kHeader + "{\"op\": \"snapshot\", \"file\": \"a.png\", \"field\": \"z\", "
                           "\"range\": [1, 0]}\n",
                 2, "range", "min < max"},

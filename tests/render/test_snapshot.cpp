@@ -205,6 +205,59 @@ TEST_F(RenderSnapshot, InsideOfATubeIsLit) {
   EXPECT_GT(lit, kW / 4 / 2);
 }
 
+// A clip plane through the axis of a tube, facing the camera, removes the near wall and what
+// lies on it (a suture line, a marker): the inside of the far wall shows where the near wall
+// was. A plane across the top removes both walls there: background.
+TEST_F(RenderSnapshot, AClipPlaneCutsAwayItsSideAndShowsTheInside) {
+  const TestMesh pipe = tube(1.0f, 6.0f, 24, 48);
+  Scene scene;
+  scene.surfaces.push_back(pipe.surface());
+  scene.surfaces[0].color = {0.2f, 0.4f, 0.9f};
+  PolylineItem seam;  // along the near wall, y = -1
+  seam.points = {{-2.0f, -1.0f, 0.0f}, {2.0f, -1.0f, 0.0f}};
+  seam.color = {1.0f, 0.0f, 0.0f};
+  seam.width_px = 5.0f;
+  scene.polylines.push_back(seam);
+  PointsItem probe;
+  probe.points = {{-1.0f, -1.0f, 0.5f}};
+  probe.color = {0.0f, 1.0f, 0.0f};
+  probe.size_px = 9.0f;
+  scene.points.push_back(probe);
+  const Camera camera = looking_at_origin({0.0f, -6.0f, 0.0f}, {0.0f, 0.0f, 1.0f});
+  const Image whole = render(scene, camera);
+  const auto seam_px = project(scene, camera, kW, kH, {1.0f, -1.0f, 0.0f});
+  const auto probe_px = project(scene, camera, kW, kH, probe.points[0]);
+  ASSERT_TRUE(near_colour(whole.pixel(seam_px[0], seam_px[1]), {255, 0, 0, 255}, 10));
+  ASSERT_TRUE(near_colour(whole.pixel(probe_px[0], probe_px[1]), {0, 255, 0, 255}, 10));
+
+  scene.clip = ClipPlane{{0.0f, 0.0f, 0.0f}, {0.0f, -3.0f, 0.0f}};  // not unit length
+  const Image cut = render(scene, camera);
+  keep(cut, "clip_near_half");
+  for (const auto& px : {seam_px, probe_px}) {
+    const Rgba c = cut.pixel(px[0], px[1]);
+    EXPECT_NE(c, kWhite);                               // the far wall, seen from inside
+    EXPECT_GT(int{c[2]}, int{c[0]} + 40) << px[0];      // the tube's blue, not the seam's red
+    EXPECT_GT(int{c[2]}, int{c[1]} + 20) << px[0];      // nor the probe's green
+  }
+  EXPECT_NE(cut.rgba, whole.rgba);
+
+  scene.clip = ClipPlane{{0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 1.0f}};
+  const Image top = render(scene, camera);
+  keep(top, "clip_top");
+  const auto high = project(scene, camera, kW, kH, {0.0f, -0.6f, 0.8f});
+  const auto low = project(scene, camera, kW, kH, {0.0f, -0.6f, -0.8f});
+  EXPECT_EQ(top.pixel(high[0], high[1]), kWhite);
+  EXPECT_EQ(top.pixel(low[0], low[1]), whole.pixel(low[0], low[1]));
+  EXPECT_EQ(top.rgba, render(scene, camera).rgba);  // deterministic
+
+  scene.clip = ClipPlane{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
+  EXPECT_THROW(render(scene, camera), std::invalid_argument);
+  scene.clip = ClipPlane{{std::nanf(""), 0.0f, 0.0f}, {0.0f, 0.0f, 1.0f}};
+  EXPECT_THROW(render(scene, camera), std::invalid_argument);
+  scene.clip.reset();
+  EXPECT_EQ(render(scene, camera).rgba, whole.rgba);  // the renderer is unharmed
+}
+
 TEST_F(RenderSnapshot, ScalarColourMapsGiveTheirLowAndHighColours) {
   const TestMesh plane = square(1.0f, 32);
   std::vector<float> x_scalars;

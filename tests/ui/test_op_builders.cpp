@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "../../ui/src/op_builders.hpp"
+#include "sutura/app/session.hpp"
 #include "sutura/engine/generators.hpp"
 
 namespace fs = std::filesystem;
@@ -73,4 +74,24 @@ TEST(OpBuilders, FloatFieldsAreRecordedAsTyped) {
   EXPECT_EQ(as_typed(1e-3f), 0.001);
   EXPECT_EQ(as_typed(0.35f), 0.35);
   EXPECT_EQ(float(as_typed(0.1f)), 0.1f);  // reads back as the same float
+}
+
+// A snapshot of a cut-open view records the plane, and the session reads it back as the same
+// plane (normalised).
+TEST(OpBuilders, ASnapshotOfACutOpenViewRecordsItsPlane) {
+  SnapshotView view;
+  view.camera.eye = {0.0f, -40.0f, 0.0f};
+  const nlohmann::json plain = snapshot_op("a.png", view, false, "none");
+  EXPECT_FALSE(plain.contains("clip"));
+  view.clip = sutura::render::ClipPlane{{1.0f, 2.0f, 3.0f}, {0.0f, -1.0f, 0.0f}};
+  const nlohmann::json cut = snapshot_op("a.png", view, true, "none");
+  ASSERT_TRUE(cut.contains("clip"));
+  EXPECT_EQ(cut["clip"]["point"], nlohmann::json::array({1.0f, 2.0f, 3.0f}));
+  EXPECT_EQ(cut["clip"]["normal"], nlohmann::json::array({0.0f, -1.0f, 0.0f}));
+  const auto session = sutura::app::parse_session(
+      "{\"format\": \"sutura-session\", \"version\": 3}\n" + cut.dump() + "\n", "/tmp/s.jsonl");
+  const auto& op = std::get<sutura::app::SnapshotOp>(session.actions.at(0).op);
+  ASSERT_TRUE(op.clip.has_value());
+  EXPECT_DOUBLE_EQ(op.clip->point[2], 3.0);
+  EXPECT_DOUBLE_EQ(op.clip->normal[1], -1.0);
 }

@@ -2,6 +2,8 @@
 // fix click snaps to.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "../../ui/src/scene_picker.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
@@ -46,4 +48,40 @@ TEST(ScenePicker, NearestOfTwoObjectsWins) {
   const auto from_left = picker.pick({engine::Vec3(-60, 0, 10), engine::Vec3(1, 0, 0)});
   ASSERT_TRUE(from_left);
   EXPECT_EQ(from_left->object, 0u);
+}
+
+// With Cut open, what is cut away is not picked: a ray from the eye through a tube whose near
+// half is cut away hits the far wall; a ray that stays on the cut side hits nothing.
+TEST(ScenePicker, APlaneCutsAwayThePartOfTheRayOnItsNormalsSide) {
+  engine::TubeParams t;
+  const engine::SurfaceMesh tube = engine::make_tube(t);  // axis z, radius t.radius
+  ui::ScenePicker picker;
+  picker.rebuild({&tube});
+  const engine::Ray ray{engine::Vec3(30, 0, 10), engine::Vec3(-1, 0, 0)};
+  const auto whole = ui::uncut_part(ray, std::nullopt);
+  EXPECT_EQ(whole[0], 0.0);
+  EXPECT_EQ(whole[1], std::numeric_limits<double>::infinity());
+  const auto near_wall = picker.pick(ray, 0.0, whole[0], whole[1]);
+  ASSERT_TRUE(near_wall);
+  EXPECT_NEAR(near_wall->hit.point.x(), t.radius, 0.05);
+
+  const render::ClipPlane facing_the_eye{{0.0f, 0.0f, 10.0f}, {1.0f, 0.0f, 0.0f}};
+  const auto cut = ui::uncut_part(ray, facing_the_eye);
+  EXPECT_DOUBLE_EQ(cut[0], 30.0);  // where the ray crosses the plane
+  const auto far_wall = picker.pick(ray, 0.0, cut[0], cut[1]);
+  ASSERT_TRUE(far_wall);
+  EXPECT_NEAR(far_wall->hit.point.x(), -t.radius, 0.05);
+
+  // An eye on the kept side looking into the cut side: only the part before the plane is left.
+  const engine::Ray inward{engine::Vec3(-30, 0, 10), engine::Vec3(1, 0, 0)};
+  const auto before_plane = ui::uncut_part(inward, facing_the_eye);
+  EXPECT_EQ(before_plane[0], 0.0);
+  EXPECT_DOUBLE_EQ(before_plane[1], 30.0);
+  const auto hit = picker.pick(inward, 0.0, before_plane[0], before_plane[1]);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->hit.point.x(), -t.radius, 0.05);
+  // Away from the plane on the cut side: nothing left, nothing picked.
+  const auto none = ui::uncut_part({engine::Vec3(30, 0, 10), engine::Vec3(1, 0, 0)}, facing_the_eye);
+  EXPECT_GT(none[0], none[1]);
+  EXPECT_FALSE(picker.pick({engine::Vec3(30, 0, 10), engine::Vec3(1, 0, 0)}, 0.0, none[0], none[1]));
 }

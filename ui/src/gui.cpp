@@ -148,6 +148,12 @@ void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int h
   const auto cmap = inspect ? s.view.color_map() : std::nullopt;
   const render::Camera camera = s.shown_camera();
   if (x0 > 0) renderer.draw(make_scene({}, {}, std::nullopt, false), camera, x0, height);
+  const std::optional<render::ClipPlane> clip = s.clip_plane();
+  const auto scene = [&](const std::vector<app::ObjectView>& objects, const Overlays& on_top) {
+    render::Scene scene = make_scene(objects, on_top, cmap, s.wireframe);
+    scene.clip = clip;
+    return scene;
+  };
   if (inspect && s.side_by_side) {
     const render::Camera& wide = camera;
     const int half = width / 2;
@@ -156,16 +162,14 @@ void draw_view(GuiState& s, render::Renderer& renderer, int x0, int width, int h
     left.draw_legend = false;  // one legend (on the right) serves both views
     left.legend_space = true;  // both halves frame the scene alike, as the snapshot does
     right.viewport_x = x0 + half;
-    renderer.draw(make_scene(s.view.before(), {}, cmap, s.wireframe), wide, half, height, left);
-    renderer.draw(make_scene(s.view.current(), overlays, cmap, s.wireframe), wide, width - half,
-                  height, right);
+    renderer.draw(scene(s.view.before(), {}), wide, half, height, left);
+    renderer.draw(scene(s.view.current(), overlays), wide, width - half, height, right);
     return;
   }
   const bool before = inspect && s.show_before;
   render::RenderOptions options;
   options.viewport_x = x0;
-  renderer.draw(make_scene(before ? s.view.before() : s.view.current(), before ? Overlays{} : overlays,
-                           cmap, s.wireframe),
+  renderer.draw(scene(before ? s.view.before() : s.view.current(), before ? Overlays{} : overlays),
                 camera, width, height, options);
 }
 

@@ -1,6 +1,7 @@
 #include "gui_state.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "sutura/app/session.hpp"
 
@@ -40,6 +41,20 @@ render::Camera GuiState::shown_camera() const {
   if (stages.stage() == Stage::Inspect && side_by_side)
     for (int k = 0; k < 3; ++k) c.eye[k] = c.target[k] + 2.0f * (c.eye[k] - c.target[k]);
   return c;
+}
+
+std::optional<render::ClipPlane> GuiState::clip_plane() const {
+  if (!cut_open) return std::nullopt;
+  const render::Camera c = camera.camera();
+  render::Point3 d{c.eye[0] - c.target[0], c.eye[1] - c.target[1], c.eye[2] - c.target[2]};
+  const float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(len > 0.0f)) return std::nullopt;
+  render::ClipPlane p;
+  for (int k = 0; k < 3; ++k) {
+    p.normal[k] = d[k] / len;
+    p.point[k] = c.target[k] + cut_offset_mm * p.normal[k];
+  }
+  return p;
 }
 
 bool GuiState::start_run(const nlohmann::json& op, int number, int total, std::string& why) {

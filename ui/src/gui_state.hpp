@@ -154,6 +154,11 @@ struct GuiState {
   bool show_before = false;
   bool side_by_side = false;
   bool wireframe = false;
+  /// Cut open (menu bar, View menu): what lies nearer the eye than a plane facing the view,
+  /// through the orbit centre moved cut_offset_mm towards the eye, is neither drawn nor picked,
+  /// so the lumen shows; a saved snapshot records the plane (its `clip`).
+  bool cut_open = false;
+  float cut_offset_mm = 0.0f;
   ViewField field = ViewField::None;
   /// Where the named open ends of every object are (the centroid of each boundary loop that
   /// app::end_name names), with their names; refreshed with the view.
@@ -266,6 +271,9 @@ struct GuiState {
   /// The camera the view shows: the orbit camera, backed off twice as far side by side (each
   /// half is half as wide, so the same objects still fit across it).
   [[nodiscard]] render::Camera shown_camera() const;
+  /// The Cut open plane (render::ClipPlane: the side its normal points to, the eye's, is cut
+  /// away), or nullopt when it is off.
+  [[nodiscard]] std::optional<render::ClipPlane> clip_plane() const;
 
   void info(std::string text);
   void error(std::string text);

@@ -189,6 +189,7 @@ json snapshot_op(const std::string& file, const SnapshotView& view, bool side_by
                {"up", p(view.camera.up)},
                {"fov_deg", view.camera.fov_y_deg}}}};
   if (view.range && field != "none") op["range"] = {(*view.range)[0], (*view.range)[1]};
+  if (view.clip) op["clip"] = {{"point", p(view.clip->point)}, {"normal", p(view.clip->normal)}};
   return op;
 }
 

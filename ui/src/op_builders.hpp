@@ -97,6 +97,7 @@ struct SnapshotView {
   render::Camera camera;
   int width = 1280, height = 960;
   std::optional<std::array<float, 2>> range;
+  std::optional<render::ClipPlane> clip;  ///< the Cut open plane, recorded as the op's `clip`
 };
 nlohmann::json snapshot_op(const std::string& file, const SnapshotView& view, bool side_by_side,
                            const std::string& field);

@@ -188,6 +188,7 @@ void inspect_section(GuiState& s) {
     view.width = std::clamp(int(width), 16, 8192);
     view.height = std::clamp(int(s.view_height), 16, 8192);
     if (const auto cmap = s.view.color_map()) view.range = std::array<float, 2>{cmap->min, cmap->max};
+    view.clip = s.clip_plane();
     s.pending_snapshot = snapshot_op(s.snapshot_file, view, s.side_by_side, session_field_name(s.field));
     if (!fs::exists(s.controller.options().out_dir / s.snapshot_file)) save_pending_snapshot(s);
   }

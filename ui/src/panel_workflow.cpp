@@ -1,5 +1,6 @@
 // Menu bar, workflow window and message history.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "panels.hpp"
@@ -43,6 +44,12 @@ void menu_bar(GuiState& s) {
     for (const StandardView v : kStandardViews)
       if (ImGui::MenuItem(to_string(v))) s.fit_requested = true, s.view_requested = v;
     ImGui::MenuItem("Wireframe", nullptr, &s.wireframe);
+    ImGui::MenuItem("Cut open", nullptr, &s.cut_open);
+    ImGui::SetNextItemWidth(110.0f);
+    ImGui::InputFloat("cut plane, towards you", &s.cut_offset_mm, 0.5f, 2.0f, "%.1f mm");
+    s.cut_offset_mm = std::isfinite(s.cut_offset_mm) ? std::clamp(s.cut_offset_mm, -1000.0f, 1000.0f) : 0.0f;
+    tooltip_for_last_item("How far the cut plane lies in front of the view's centre (the point the "
+                          "view turns about): negative values cut deeper.");
     ImGui::EndMenu();
   }
   // Standard views in the menu bar, outside the 3-D view, so that they never cover the vessel
@@ -50,6 +57,12 @@ void menu_bar(GuiState& s) {
   ImGui::TextDisabled("|  View from:");
   for (const StandardView v : kStandardViews)
     if (gated_button(s.widgets, to_string(v), std::nullopt)) s.fit_requested = true, s.view_requested = v;
+  ImGui::Checkbox("Cut open", &s.cut_open);
+  s.widgets.note("Cut open");
+  tooltip_for_last_item("Cuts away the half of the vessel nearer to you, along a plane facing the view "
+                        "through its centre, to look into the lumen; it turns with the view. Cut-away "
+                        "parts are not picked, and a saved snapshot is cut the same way (View menu: "
+                        "move the plane).");
   ImGui::SameLine(ImGui::GetWindowWidth() - 420.0f);
   ImGui::Text("Stage: %s   |   recording to %s", std::string(to_string(s.stages.stage())).c_str(),
               s.controller.recorder().file().filename().c_str());

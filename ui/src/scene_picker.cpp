@@ -29,10 +29,23 @@ void ScenePicker::rebuild(const std::vector<const engine::SurfaceMesh*>& meshes)
   }
 }
 
-std::optional<Pick> ScenePicker::pick(const engine::Ray& ray, double corner_snap) const {
+std::array<double, 2> uncut_part(const engine::Ray& ray, const std::optional<render::ClipPlane>& clip) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (!clip) return {0.0, kInf};
+  const engine::Vec3 n(clip->normal[0], clip->normal[1], clip->normal[2]);
+  const engine::Vec3 p(clip->point[0], clip->point[1], clip->point[2]);
+  const double side = n.dot(ray.origin - p);  // > 0: the origin is cut away
+  const double along = n.dot(ray.direction);
+  if (side > 0.0) return along < 0.0 ? std::array<double, 2>{-side / along, kInf} : std::array<double, 2>{kInf, 0.0};
+  return along > 0.0 ? std::array<double, 2>{0.0, -side / along} : std::array<double, 2>{0.0, kInf};
+}
+
+std::optional<Pick> ScenePicker::pick(const engine::Ray& ray, double corner_snap, double t_min,
+                                      double t_max) const {
   std::optional<Pick> best;
+  if (!(t_min <= t_max)) return best;
   for (std::size_t i = 0; i < entries_.size(); ++i) {
-    const auto hit = entries_[i].bvh.intersect(ray, 0.0, best ? best->hit.t : std::numeric_limits<double>::infinity());
+    const auto hit = entries_[i].bvh.intersect(ray, t_min, best ? best->hit.t : t_max);
     if (!hit) continue;
     Pick p;
     p.object = i;

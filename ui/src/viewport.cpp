@@ -120,9 +120,11 @@ void viewport_input(GuiState& s, float width, float height) {
   const bool can_pick = !s.controller.busy() && !s.side_by_side && !s.show_before &&
                         s.picker_revision == s.controller.revision();
   const double snap_angle = kCornerSnapPx * s.camera.radians_per_pixel(height);
-  if (can_pick && ImGui::IsMousePosValid() && io.MousePos.x - s.view_left < width)  // not over the legend
-    s.hover = s.picker.pick(s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height),
-                            snap_angle);
+  if (can_pick && ImGui::IsMousePosValid() && io.MousePos.x - s.view_left < width) {  // not over the legend
+    const engine::Ray ray = s.camera.ray_through(io.MousePos.x - s.view_left, io.MousePos.y, width, height);
+    const std::array<double, 2> uncut = uncut_part(ray, s.clip_plane());  // nothing cut away is picked
+    s.hover = s.picker.pick(ray, snap_angle, uncut[0], uncut[1]);
+  }
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) s.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (ImGui::IsMouseDragging(ImGuiMouseButton_Right) || ImGui::IsMouseDragging(ImGuiMouseButton_Middle))
     s.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);

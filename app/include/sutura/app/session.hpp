@@ -105,6 +105,13 @@ struct CameraSpec {
   double fov_deg = 35.0;
 };
 
+/// A plane that cuts a snapshot open to show the lumen (render::ClipPlane): what lies on the side
+/// `normal` points to is not drawn, in both halves of a side-by-side.
+struct ClipSpec {
+  Vec3f point{};
+  Vec3f normal{};  ///< unit length (the parser normalises it)
+};
+
 /// Per-vertex field shown as colours.
 enum class Field { None, Displacement, X, Y, Z, MembraneStrain, Bending, EnergyDensity };
 
@@ -122,6 +129,7 @@ struct SnapshotOp {
   bool boundaries = true;     ///< draw boundary loops as polylines
   bool marks = true;         ///< draw incisions (red) and sutures (green) on the current state
   bool compare_rest = false; ///< side by side: the current rest shape instead of the before-state
+  std::optional<ClipSpec> clip;
 };
 
 /// Writes an object's current mesh (.obj/.ply/.stl) inside the output directory.

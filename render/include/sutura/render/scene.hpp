@@ -75,12 +75,23 @@ struct ColorMap {
   bool show_legend = true;
 };
 
+/// A plane that cuts the scene open to show the inside of a vessel: what lies on the side the
+/// normal points to (surfaces, wireframes, polylines and points alike) is not drawn, per pixel,
+/// and the wall left is seen from both sides. The normal need not be unit length. A draw with a
+/// non-finite point or normal, or a zero normal, throws std::invalid_argument. The scene's
+/// bounds (and so a fitted camera) ignore the plane: cut and uncut views frame alike.
+struct ClipPlane {
+  Point3 point = {0.0f, 0.0f, 0.0f};
+  Point3 normal = {0.0f, 0.0f, 1.0f};
+};
+
 struct Scene {
   std::vector<SurfaceItem> surfaces;
   std::vector<PolylineItem> polylines;
   std::vector<PointsItem> points;
   std::optional<ColorMap> color_map;  ///< used by surfaces with scalars
   Color background = {1.0f, 1.0f, 1.0f};
+  std::optional<ClipPlane> clip;
 };
 
 /// Axis-aligned bounds of everything in the scene; {min, max}. Points with a non-finite
