@@ -15,10 +15,10 @@
 #include "generate_command.hpp"
 #include "gui_command.hpp"
 #include "prepare_command.hpp"
+#include "sutura/app/blas_restart.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session_runner.hpp"
-#include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 
@@ -111,9 +111,7 @@ int run_distance(const std::string& a_file, const std::string& b_file, double sp
 }  // namespace
 
 int main(int argc, char** argv) {
-  // OpenBLAS 0.3.21 does not know the newest CPUs and falls back to slow generic kernels;
-  // this restarts once with better ones where the CPU has them (why: blas_kernels.hpp).
-  sutura::engine::restart_with_better_blas_kernels(argv);
+  sutura::app::restart_with_better_blas_kernels(argv);  // first: OpenBLAS's kernels (blas_restart.hpp)
   CLI::App app{"Sutura: thin-shell surgical planning for congenital heart defect repair"};
   app.set_version_flag("--version", std::string("sutura ") + SUTURA_VERSION);
   app.require_subcommand(1);

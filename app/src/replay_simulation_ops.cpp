@@ -295,8 +295,7 @@ json Run::execute(const SolveOp& op) {
                        "the first edit");
   require_restrained(objs, "static solve");
   const auto model = make_model(op.model);
-  const engine::AreaBarrierParams barrier;
-  MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &barrier : nullptr);
+  MergedSystem merged(objs, *model, nullptr, op.collapse_barrier ? &op.barrier : nullptr);
   if (op.minimize) require_conservative_pressure(merged);
   engine::StaticSolverParams params = op.params;
   params.keep_going = [this] { return !past_deadline(); };
@@ -349,12 +348,12 @@ json Run::execute(const UnloadOp& op) {
   std::vector<SceneObject*> objs{&obj};
   require_restrained(objs, "unload");
   const auto model = make_model(op.solve.model);
-  const engine::AreaBarrierParams barrier;
-  MergedSystem merged(objs, *model, nullptr, op.solve.collapse_barrier ? &barrier : nullptr);
+  MergedSystem merged(objs, *model, nullptr, op.solve.collapse_barrier ? &op.solve.barrier : nullptr);
   if (op.solve.minimize) require_conservative_pressure(merged);
   engine::UnloadParams params;
   params.max_iterations = op.iterations;
   params.tolerance = op.shape_tolerance;
+  params.acceleration_depth = op.acceleration_depth;
   params.solver = op.solve.params;
   params.solver.keep_going = [this] { return !past_deadline(); };
   const std::vector<engine::Vec3> imaged = merged.state().x;
@@ -407,9 +406,8 @@ json Run::execute(const SimulateOp& op) {
   if (op.relax) return relax(op);
   const auto objs = objects_named(op.objects);
   const auto model = make_model(op.model);
-  const engine::AreaBarrierParams barrier;
   MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr,
-                      op.collapse_barrier ? &barrier : nullptr);
+                      op.collapse_barrier ? &op.barrier : nullptr);
   engine::DynamicsState ds{merged.state(), merged.velocity()};
   bool cancelled = false;
   const engine::StepHook hook = [&](int step) {
@@ -456,9 +454,8 @@ json Run::relax(const SimulateOp& op) {
                              std::to_string(s_start) + ")");
   if (params.solver == engine::RelaxationSolver::Static && !op.contact) require_restrained(objs, "static relaxation");
   const auto model = make_model(op.model);
-  const engine::AreaBarrierParams barrier;
   MergedSystem merged(objs, *model, op.contact ? &*op.contact : nullptr,
-                      op.collapse_barrier ? &barrier : nullptr);
+                      op.collapse_barrier ? &op.barrier : nullptr);
   const engine::RestState y0 = merged.relax_from();
   const engine::RestState x0 = merged.rest();
   merged.rest() = engine::rest_at(y0, x0, s_start);

@@ -95,11 +95,11 @@ bool Fields::optional_bool(const std::string& key, bool fallback) {
   return v.get<bool>();
 }
 
-Vec3f Fields::required_vec3(const std::string& key) {
+Vec3d Fields::required_vec3(const std::string& key) {
   if (!has(key)) fail(key, "missing (an array of 3 numbers is required)");
   const json& v = take(key);
   if (!v.is_array() || v.size() != 3) fail(key, "must be an array of 3 numbers");
-  Vec3f out{};
+  Vec3d out{};
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number()) fail(key, "must be an array of 3 numbers");
     out[i] = v[i].get<double>();
@@ -108,7 +108,7 @@ Vec3f Fields::required_vec3(const std::string& key) {
   return out;
 }
 
-std::optional<Vec3f> Fields::optional_vec3(const std::string& key) {
+std::optional<Vec3d> Fields::optional_vec3(const std::string& key) {
   if (!has(key)) return std::nullopt;
   return required_vec3(key);
 }
@@ -166,11 +166,11 @@ const json* Fields::raw(const std::string& key) {
   return &take(key);
 }
 
-std::vector<Vec3f> Fields::vec3_list(const std::string& key) {
+std::vector<Vec3d> Fields::vec3_list(const std::string& key) {
   const json* v = raw(key);
   if (v == nullptr) fail(key, "missing (an array of [x, y, z] points is required)");
   if (!v->is_array() || v->empty()) fail(key, "must be a non-empty array of [x, y, z] points");
-  std::vector<Vec3f> out;
+  std::vector<Vec3d> out;
   for (const auto& e : *v) {
     if (!e.is_array() || e.size() != 3 || !e[0].is_number() || !e[1].is_number() ||
         !e[2].is_number())

@@ -32,8 +32,8 @@ class Fields {
   /// A whole number in [min, max].
   int optional_int(const std::string& key, int fallback, int min, int max);
   bool optional_bool(const std::string& key, bool fallback);
-  Vec3f required_vec3(const std::string& key);
-  std::optional<Vec3f> optional_vec3(const std::string& key);
+  Vec3d required_vec3(const std::string& key);
+  std::optional<Vec3d> optional_vec3(const std::string& key);
   /// [min, max] with min < max, both finite.
   std::optional<std::array<double, 2>> optional_range(const std::string& key);
   std::vector<std::string> optional_string_list(const std::string& key);
@@ -46,7 +46,7 @@ class Fields {
   /// The raw value of an optional field (marked as used), or nullptr.
   const nlohmann::json* raw(const std::string& key);
   /// An array of 3-vectors.
-  std::vector<Vec3f> vec3_list(const std::string& key);
+  std::vector<Vec3d> vec3_list(const std::string& key);
 
   /// Throws if the line has a field no getter asked for.
   void finish() const;

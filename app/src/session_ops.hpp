@@ -30,6 +30,6 @@ std::filesystem::path output_file(Fields& f, const std::string& key,
                                   const std::vector<std::string>& extensions);
 /// The "object" field: letters, digits, '_' and '-'.
 std::string object_name(Fields& f);
-engine::Vec3 vec(const Vec3f& v);
+engine::Vec3 vec(const Vec3d& v);
 
 }  // namespace sutura::app::detail

@@ -31,7 +31,7 @@ std::string object_name(Fields& f) {
   return name;
 }
 
-engine::Vec3 vec(const Vec3f& v) { return {v[0], v[1], v[2]}; }
+engine::Vec3 vec(const Vec3d& v) { return {v[0], v[1], v[2]}; }
 
 
 

@@ -90,11 +90,11 @@ CameraSpec parse_camera(Fields& c) {
   if (cam.eye && c.has("view")) c.fail("view", "give either view or eye/target, not both");
   cam.fov_deg = c.optional_number("fov_deg", cam.fov_deg);
   if (!(cam.fov_deg > 1.0 && cam.fov_deg < 170.0)) c.fail("fov_deg", "must be between 1 and 170");
-  auto norm = [](const Vec3f& v) { return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]; };
+  auto norm = [](const Vec3d& v) { return v[0] * v[0] + v[1] * v[1] + v[2] * v[2]; };
   if (norm(cam.up) == 0.0) c.fail("up", "must not be the zero vector");
   if (norm(cam.view) == 0.0) c.fail("view", "must not be the zero vector");
   if (cam.eye) {
-    Vec3f d{(*cam.target)[0] - (*cam.eye)[0], (*cam.target)[1] - (*cam.eye)[1],
+    Vec3d d{(*cam.target)[0] - (*cam.eye)[0], (*cam.target)[1] - (*cam.eye)[1],
             (*cam.target)[2] - (*cam.eye)[2]};
     if (norm(d) == 0.0) c.fail("eye", "eye and target must differ");
   }

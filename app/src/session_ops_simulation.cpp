@@ -1,6 +1,7 @@
 // Parsers of the simulation ops: material, constrain, force, line_load, pressure, body_force,
 // solve, simulate, probe, check.
 #include "session_ops.hpp"
+#include "session_defaults.hpp"
 #include "sutura/engine/sim/linear_solver.hpp"
 
 namespace sutura::app::detail {
@@ -173,6 +174,8 @@ void parse_solver_settings(Fields& f, SolveOp& op) {
 
 SolveOp parse_solve(Fields& f) {
   SolveOp op;
+  op.params = static_solver_defaults(f.format_version());
+  op.barrier = area_barrier_defaults(f.format_version());
   op.objects = f.optional_string_list("objects");
   op.load_factor = f.optional_positive("load_factor", op.load_factor);
   if (op.load_factor > 1.0) f.fail("load_factor", "must be in (0, 1]");
@@ -185,6 +188,12 @@ SolveOp parse_solve(Fields& f) {
 
 UnloadOp parse_unload(Fields& f) {
   UnloadOp op;
+  op.solve.params = static_solver_defaults(f.format_version());
+  op.solve.barrier = area_barrier_defaults(f.format_version());
+  const engine::UnloadParams pinned = unload_defaults(f.format_version());
+  op.iterations = pinned.max_iterations;
+  op.shape_tolerance = pinned.tolerance;
+  op.acceleration_depth = pinned.acceleration_depth;
   op.object = object_name(f);
   parse_solver_settings(f, op.solve);
   if (op.solve.params.linear)
@@ -197,6 +206,8 @@ UnloadOp parse_unload(Fields& f) {
 
 SimulateOp parse_simulate(Fields& f) {
   SimulateOp op;
+  op.params = dynamics_defaults(f.format_version());
+  op.barrier = area_barrier_defaults(f.format_version());
   op.objects = f.optional_string_list("objects");
   op.model = f.optional_choice("model", op.model, {"corotational", "discrete"});
   op.collapse_barrier = f.optional_bool("collapse_barrier", op.collapse_barrier);
@@ -222,7 +233,7 @@ SimulateOp parse_simulate(Fields& f) {
     f.fail("scheme", "the relaxation changes the rest shape every step: it uses newton");
   p.linear_solver = linear_solver(f, p.linear_solver);
   if (auto r = f.optional_object("relax")) {
-    engine::RelaxationParams rp;
+    engine::RelaxationParams rp = relaxation_defaults(f.format_version());
     rp.solver = engine::parse_relaxation_solver(
         r->optional_choice("solver", "static", {"static", "dynamic"}));
     rp.steps = r->optional_int("steps", rp.steps, 1, 1000000);
@@ -251,7 +262,7 @@ SimulateOp parse_simulate(Fields& f) {
     op.relax = rp;
   }
   if (auto c = f.optional_object("contact")) {
-    engine::ContactParams cp;
+    engine::ContactParams cp = contact_defaults(f.format_version());
     cp.distance = c->optional_positive("distance", cp.distance);
     cp.stiffness = c->optional_positive("stiffness", cp.stiffness);
     c->finish();

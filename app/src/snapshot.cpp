@@ -30,7 +30,7 @@ ObjectView rest_view(const SceneObject& obj, render::Color color) {
   return a;
 }
 
-render::Point3 to_point(const Vec3f& v) { return {float(v[0]), float(v[1]), float(v[2])}; }
+render::Point3 to_point(const Vec3d& v) { return {float(v[0]), float(v[1]), float(v[2])}; }
 
 std::array<render::Point3, 2> merge(const std::array<render::Point3, 2>& a,
                                     const std::array<render::Point3, 2>& b) {

@@ -1,7 +1,6 @@
 #include "sutura/engine/blas_kernels.hpp"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -38,17 +37,6 @@ const char* better_blas_coretype() {
   if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "Haswell";
 #endif
   return nullptr;
-}
-
-void restart_with_better_blas_kernels(char** argv) {
-  const char* coretype = better_blas_coretype();
-  if (coretype == nullptr || argv == nullptr || argv[0] == nullptr) return;
-  // The restarted program finds the variable set, so it cannot restart again.
-  if (setenv("OPENBLAS_CORETYPE", coretype, 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  // Only reached when the restart failed: carry on with the generic kernels, and leave the
-  // environment as it was for any child process.
-  unsetenv("OPENBLAS_CORETYPE");
 }
 
 }  // namespace sutura::engine

@@ -42,7 +42,7 @@ sutura::render::Image read_png(const fs::path& p) {
 }
 
 // The inflated aortic segment: a quick session exercising snapshots, fields and exports.
-const fs::path kDefaultSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "inflation.jsonl";
+const fs::path kInflationSession = fs::path(SUTURA_ASSETS_DIR) / "sessions" / "inflation.jsonl";
 
 // Runs the sutura executable (after `env`, e.g. "env VAR=value "); returns its exit status and
 // captures stderr.
@@ -63,7 +63,7 @@ TEST(Replay, DefaultSessionWritesSnapshotsMeshesAndReport) {
   ReplayOptions options;
   options.out_dir = out;
   options.progress = &progress;
-  ReplayResult result = replay(load_session(kDefaultSession), options);
+  ReplayResult result = replay(load_session(kInflationSession), options);
 
   EXPECT_NE(progress.str().find("snapshot"), std::string::npos);
   ASSERT_TRUE(fs::exists(out / "report.json"));
@@ -123,7 +123,7 @@ TEST(Replay, IsDeterministic) {
   ReplayOptions oa, ob;
   oa.out_dir = a;
   ob.out_dir = b;
-  const Session s = load_session(kDefaultSession);
+  const Session s = load_session(kInflationSession);
   ReplayResult ra = replay(s, oa), rb = replay(s, ob);
   for (const auto& obj : ra.workspace.objects())
     EXPECT_EQ(position_hash(obj.mesh), position_hash(rb.workspace.find(obj.name)->mesh));
@@ -176,7 +176,7 @@ TEST(Replay, LoadsMeshRelativeToSessionAndReportsBadMeshWithFileName) {
 TEST(SuturaCli, ReplayDefaultSessionEndToEnd) {
   fs::path out = fresh_dir("cli");
   std::string err;
-  ASSERT_EQ(run_sutura("replay " + kDefaultSession.string() + " --out " + out.string(), &err), 0)
+  ASSERT_EQ(run_sutura("replay " + kInflationSession.string() + " --out " + out.string(), &err), 0)
       << err;
   EXPECT_NE(err.find("position hash"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "before_after.png"));
@@ -191,7 +191,7 @@ TEST(SuturaCli, RunsWithTheBlasKernelsTheCpuSupports) {
   const auto blas_of_replay = [](const std::string& env) {
     fs::path out = fresh_dir("blas");
     std::string err;
-    EXPECT_EQ(run_sutura("replay " + kDefaultSession.string() + " -q --out " + out.string(), &err,
+    EXPECT_EQ(run_sutura("replay " + kInflationSession.string() + " -q --out " + out.string(), &err,
                          env),
               0)
         << err;
@@ -218,7 +218,7 @@ TEST(SuturaCli, ThreadsOptionSetsAndReportsTheThreadCount) {
   const auto replay_with = [](const std::string& option) {
     fs::path out = fresh_dir("threads");
     std::string err;
-    EXPECT_EQ(run_sutura("replay " + kDefaultSession.string() + " -q " + option + " --out " +
+    EXPECT_EQ(run_sutura("replay " + kInflationSession.string() + " -q " + option + " --out " +
                              out.string(),
                          &err),
               0)
@@ -236,7 +236,7 @@ TEST(SuturaCli, ThreadsOptionSetsAndReportsTheThreadCount) {
   EXPECT_EQ(a.at("objects"), replay_with("--threads 2").at("objects"));
   EXPECT_GE(replay_with("").at("threads").at("openmp").get<int>(), 1);
   std::string err;
-  EXPECT_NE(run_sutura("replay " + kDefaultSession.string() + " --threads 0", &err), 0);
+  EXPECT_NE(run_sutura("replay " + kInflationSession.string() + " --threads 0", &err), 0);
   EXPECT_NE(err.find("--threads"), std::string::npos) << err;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sutura/app/blas_restart.hpp"
 #include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
@@ -279,7 +280,7 @@ BENCHMARK(BM_DynamicsStep)
     ->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   // The same OpenBLAS kernels as the sutura program uses (why: blas_kernels.hpp).
-  sutura::engine::restart_with_better_blas_kernels(argv);
+  sutura::app::restart_with_better_blas_kernels(argv);
   benchmark::AddCustomContext("blas", sutura::engine::blas_kernels_in_use());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

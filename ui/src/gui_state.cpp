@@ -17,7 +17,7 @@ std::optional<std::string> GuiState::missing_op(const std::string& name) const {
   return "Not available in this build: the session op '" + name + "' does not exist yet.";
 }
 
-std::optional<std::string> GuiState::why_not(Action a, const std::string& op) const {
+std::optional<std::string> GuiState::why_not(Command a, const std::string& op) const {
   if (auto why = stages.why_disabled(a)) return why;
   if (controller.busy() && stages.stage() != Stage::Simulate) return "An action is running.";
   if (!op.empty()) return missing_op(op);

@@ -262,7 +262,7 @@ struct GuiState {
   /// Why an op this build lacks cannot be used, or nullopt when it exists.
   [[nodiscard]] std::optional<std::string> missing_op(const std::string& name) const;
   /// The stage gate for `a`, else missing_op(op) when op is non-empty.
-  [[nodiscard]] std::optional<std::string> why_not(Action a, const std::string& op = {}) const;
+  [[nodiscard]] std::optional<std::string> why_not(Command a, const std::string& op = {}) const;
   [[nodiscard]] const app::SceneObject* selected() const;
   /// The selected object's automatic centreline (engine::extract_centreline of its current
   /// shape), made once per workspace_revision and object; nullptr (centreline_error says why)

@@ -82,7 +82,7 @@ void profile_plot(const nlohmann::json& details) {
 }
 
 void lumen_profile_controls(GuiState& s) {
-  const auto why = s.why_not(Action::MeasureCrossSection, "measure");
+  const auto why = s.why_not(Command::MeasureCrossSection, "measure");
   const auto* obj = s.selected();
   const auto loops = obj ? obj->mesh.boundary_loops() : std::vector<std::vector<engine::VertexId>>{};
   ImGui::TextWrapped("The lumen along the vessel's automatic centreline between two open ends.");
@@ -142,7 +142,7 @@ void equilibrium_line(const nlohmann::json& eq) {
 void inspect_section(GuiState& s) {
   if (s.stages.stage() == Stage::Inspect && s.last_equilibrium.is_object())
     equilibrium_line(s.last_equilibrium);
-  const auto why_view = s.why_not(Action::ToggleBeforeAfter);
+  const auto why_view = s.why_not(Command::ToggleBeforeAfter);
   ImGui::BeginDisabled(why_view.has_value());
   noted_checkbox(s.widgets, "Show before", &s.show_before);
   ImGui::SameLine();
@@ -150,7 +150,7 @@ void inspect_section(GuiState& s) {
   ImGui::EndDisabled();
   if (why_view) tooltip_for_last_item(*why_view);
 
-  const auto why_map = s.why_not(Action::ShowColorMap);
+  const auto why_map = s.why_not(Command::ShowColorMap);
   static const char* kFields[] = {"plain", "displacement", "membrane strain", "bending"};
   ImGui::TextUnformatted("Colour map:");
   ImGui::BeginDisabled(why_map.has_value());
@@ -176,7 +176,7 @@ void inspect_section(GuiState& s) {
   ImGui::InputText("snapshot file", s.snapshot_file, sizeof s.snapshot_file);
   // A snapshot shows the after state, or before | after side by side: not the before state
   // alone, so the window's "Show before" view cannot be saved as it is.
-  std::optional<std::string> no_snapshot = s.why_not(Action::SaveSnapshot);
+  std::optional<std::string> no_snapshot = s.why_not(Command::SaveSnapshot);
   if (!no_snapshot && s.show_before && !s.side_by_side)
     no_snapshot = "A snapshot shows the after state or both side by side: turn off Show before.";
   if (gated_button(s.widgets, "Save snapshot", no_snapshot,
@@ -208,12 +208,12 @@ void inspect_section(GuiState& s) {
     ImGui::EndPopup();
   }
   ImGui::InputText("export file", s.export_file, sizeof s.export_file);
-  if (gated_button(s.widgets, "Export mesh", s.why_not(Action::ExportMesh)) && s.selected())
+  if (gated_button(s.widgets, "Export mesh", s.why_not(Command::ExportMesh)) && s.selected())
     s.perform(export_op(s.selected()->name, s.export_file),
               "Exported '" + s.selected()->name + "' to " +
                   (s.controller.options().out_dir / s.export_file).string());
   ImGui::Separator();
-  if (gated_button(s.widgets, "Continue planning", s.why_not(Action::ContinuePlanning),
+  if (gated_button(s.widgets, "Continue planning", s.why_not(Command::ContinuePlanning),
                    "Edit the simulated result further (another round of planning).")) {
     s.stages.continue_planning();
     s.show_before = false;

@@ -34,7 +34,7 @@ void object_list(GuiState& s) {
 
 // File path field with a one-level directory browser and the generators.
 void open_controls(GuiState& s) {
-  const auto why = s.why_not(Action::OpenMesh);
+  const auto why = s.why_not(Command::OpenMesh);
   ImGui::InputText("name", s.new_object, sizeof s.new_object);
   s.widgets.note("name");
   ImGui::InputText("file", s.open_path, sizeof s.open_path);
@@ -114,13 +114,13 @@ void tool_choice(GuiState& s) {
     ImGui::SameLine();
   };
   tool_radio("Navigate", Tool::Navigate, std::nullopt);
-  tool_radio("Incise", Tool::Incise, s.why_not(Action::Incise, "incise"));
-  tool_radio("Suture", Tool::Suture, s.why_not(Action::Suture, "join"));
+  tool_radio("Incise", Tool::Incise, s.why_not(Command::Incise, "incise"));
+  tool_radio("Suture", Tool::Suture, s.why_not(Command::Suture, "join"));
   ImGui::NewLine();
-  tool_radio("Fix ends", Tool::Fix, s.why_not(Action::FixRegion));
-  tool_radio("Patch", Tool::Patch, s.why_not(Action::AddPatch, "patch"));
-  tool_radio("Remesh", Tool::Remesh, s.why_not(Action::Remesh, "remesh"));
-  tool_radio("Resect", Tool::Resect, s.why_not(Action::Resect, "resect"));
+  tool_radio("Fix ends", Tool::Fix, s.why_not(Command::FixRegion));
+  tool_radio("Patch", Tool::Patch, s.why_not(Command::AddPatch, "patch"));
+  tool_radio("Remesh", Tool::Remesh, s.why_not(Command::Remesh, "remesh"));
+  tool_radio("Resect", Tool::Resect, s.why_not(Command::Resect, "resect"));
   ImGui::NewLine();
 }
 
@@ -255,7 +255,7 @@ void remesh_controls(GuiState& s) {
     ImGui::SetTooltip("Growth of the edge length per band away from the clicked points (1 = uniform).");
   number_field("iterations", &s.remesh.iterations, 1, 10);
   if (gated_button(s.widgets, s.remesh.points.empty() ? "Remesh object" : "Remesh region",
-                   s.why_not(Action::Remesh, "remesh")) &&
+                   s.why_not(Command::Remesh, "remesh")) &&
       s.selected()) {
     if (s.perform(remesh_op(s.selected()->name, s.remesh.points, s.remesh.radius,
                             s.remesh.target_edge_length, s.remesh.grading, s.remesh.iterations),
@@ -268,7 +268,7 @@ void remesh_controls(GuiState& s) {
 
 void load_controls(GuiState& s) {
   number_field("pressure [mmHg]", &s.pressure_mmhg, -120.0f, 120.0f, 5.0f, "%.0f");
-  if (gated_button(s.widgets, "Apply pressure", s.why_not(Action::EditMaterial),
+  if (gated_button(s.widgets, "Apply pressure", s.why_not(Command::EditMaterial),
                    "Follower pressure on every face, along the face normals; ramped in by the next simulation.") &&
       s.selected())
     s.perform({{"op", "pressure"}, {"object", s.selected()->name},
@@ -276,7 +276,7 @@ void load_controls(GuiState& s) {
               "Pressure of " + std::to_string(int(s.pressure_mmhg)) + " mmHg on '" + s.selected()->name + "'");
   // A vessel meshed at zero pressure (generated, or drawn unloaded): pressurised before the
   // surgery, "before" is that state, so before and after are both under pressure.
-  if (gated_button(s.widgets, "Pressurise before surgery", s.why_not(Action::EditMaterial),
+  if (gated_button(s.widgets, "Pressurise before surgery", s.why_not(Command::EditMaterial),
                    "The mesh is the vessel at zero pressure: solve it under the pressure applied "
                    "now, and make that pressurised vessel 'before', so that before and after "
                    "compare like with like. Apply the pressure and hold the ends first; before the "
@@ -287,7 +287,7 @@ void load_controls(GuiState& s) {
               "'" + s.selected()->name + "' pressurised before surgery: this is 'before'");
   // A segmented vessel was imaged under blood pressure: unload keeps it where it was imaged,
   // stressed by the pressures applied, instead of inflating it a second time.
-  if (gated_button(s.widgets, "Imaged under this pressure (unload)", s.why_not(Action::EditMaterial),
+  if (gated_button(s.widgets, "Imaged under this pressure (unload)", s.why_not(Command::EditMaterial),
                    "The mesh is a vessel as imaged under the pressure applied: find its stress-free "
                    "shape, so that it stays where it is, in equilibrium under that pressure, and "
                    "'before' is the imaged vessel. Apply the pressure and hold the ends first; "
@@ -349,7 +349,7 @@ void material_controls(GuiState& s) {
   const std::optional<double> e = edited(d.youngs_modulus, d.loaded_youngs_modulus),
                               nu = edited(d.poisson_ratio, d.loaded_poisson_ratio),
                               t = edited(d.thickness, d.loaded_thickness);
-  std::optional<std::string> why = s.why_not(Action::EditMaterial);
+  std::optional<std::string> why = s.why_not(Command::EditMaterial);
   if (!why && !e && !nu && !t) why = "Change a value first.";
   const std::string target = d.region == 0 ? "the wall" : "patch " + std::to_string(d.region);
   if (gated_button(s.widgets, d.region == 0 ? "Apply to the wall" : "Apply to this patch", why,
@@ -395,7 +395,7 @@ void plan_section(GuiState& s) {
       ImGui::TextWrapped(s.fix.run ? "Click the first and the last boundary vertex of the run "
                                      "(it follows the boundary with the mesh on its left)."
                                    : "Click near a boundary loop (a vessel end) to fix it.");
-      if (gated_button(s.widgets, "Hold every open end", s.why_not(Action::FixRegion, "fix")) && s.selected())
+      if (gated_button(s.widgets, "Hold every open end", s.why_not(Command::FixRegion, "fix")) && s.selected())
         s.perform(fix_all_ends_op(s.selected()->name),
                   "Every open end of '" + s.selected()->name + "' held");
       break;
@@ -412,9 +412,9 @@ void plan_section(GuiState& s) {
     load_controls(s);
     ImGui::TreePop();
   }
-  if (gated_button(s.widgets, "Undo", s.why_not(Action::Undo, "undo"), "Ctrl+Z")) undo(s);
+  if (gated_button(s.widgets, "Undo", s.why_not(Command::Undo, "undo"), "Ctrl+Z")) undo(s);
   ImGui::SameLine();
-  if (gated_button(s.widgets, "Redo", s.why_not(Action::Redo, "redo"), "Ctrl+Y")) redo(s);
+  if (gated_button(s.widgets, "Redo", s.why_not(Command::Redo, "redo"), "Ctrl+Y")) redo(s);
   if (noted_tree_node(s.widgets, "Plan steps")) {
     plan_steps(s);
     ImGui::TreePop();
@@ -464,7 +464,7 @@ void cancel_draft(GuiState& s) {
 }
 
 void undo(GuiState& s) {
-  if (auto why = s.why_not(Action::Undo, "undo")) {
+  if (auto why = s.why_not(Command::Undo, "undo")) {
     s.error("Undo: " + *why);
     return;
   }
@@ -474,7 +474,7 @@ void undo(GuiState& s) {
 }
 
 void redo(GuiState& s) {
-  if (auto why = s.why_not(Action::Redo, "redo")) {
+  if (auto why = s.why_not(Command::Redo, "redo")) {
     s.error("Redo: " + *why);
     return;
   }

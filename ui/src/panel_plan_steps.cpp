@@ -31,9 +31,9 @@ void inspect_step(GuiState& s, std::size_t i) {
   if (step.source.contains("note") && step.source["note"].is_string())
     ImGui::TextWrapped("Note: %s", step.source["note"].get<std::string>().c_str());
   if (!undone && i + 1 == p.applied && p.undoable > 0) {
-    if (gated_button(s.widgets, "Undo this step", s.why_not(Action::Undo, "undo"))) undo(s);
+    if (gated_button(s.widgets, "Undo this step", s.why_not(Command::Undo, "undo"))) undo(s);
   } else if (undone && i == p.applied) {
-    if (gated_button(s.widgets, "Redo this step", s.why_not(Action::Redo, "redo"))) redo(s);
+    if (gated_button(s.widgets, "Redo this step", s.why_not(Command::Redo, "redo"))) redo(s);
   }
   if (step.result.contains("seconds") && step.result["seconds"].is_number() &&
       step.result["seconds"].get<double>() >= 0.01)

@@ -165,7 +165,7 @@ void section_view(const app::SectionPair& section, const engine::Plane& plane) {
 }  // namespace
 
 void cross_section_controls(GuiState& s) {
-  const auto why = s.why_not(Action::MeasureCrossSection, "measure");
+  const auto why = s.why_not(Command::MeasureCrossSection, "measure");
   ImGui::TextWrapped("Click the surface to place the plane; choose its direction.");
   if (noted_radio(s.widgets, "across the vessel", s.plane_axis == 3)) s.plane_axis = 3;
   tooltip_for_last_item("Perpendicular to the vessel's automatic centreline at the clicked point, "

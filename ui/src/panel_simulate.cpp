@@ -82,7 +82,7 @@ void simulate_section(GuiState& s) {
     else if (const auto warning = s.element_check.warning())
       coloured(ImVec4(0.7f, 0.4f, 0.0f, 1.0f), *warning);
   }
-  if (gated_button(s.widgets, "Run simulation", s.why_not(Action::StartSimulation, "simulate"),
+  if (gated_button(s.widgets, "Run simulation", s.why_not(Command::StartSimulation, "simulate"),
                    "Relax the rest shape (s from 0 to 1), then settle; runs in the background.")) {
     const int relax = no_relax ? 0 : s.simulation.relax_steps;
     std::string why;
@@ -109,10 +109,10 @@ void simulate_section(GuiState& s) {
     const ProgressText text = progress_text(p, elapsed, s.run, s.runs);
     ImGui::ProgressBar(float(text.fraction), ImVec2(-1, 0), text.bar.c_str());
     ImGui::TextWrapped("%s", text.detail.c_str());
-    if (gated_button(s.widgets, p.paused ? "Resume" : "Pause", s.why_not(Action::PauseResume)))
+    if (gated_button(s.widgets, p.paused ? "Resume" : "Pause", s.why_not(Command::PauseResume)))
       s.controller.set_paused(!p.paused);
     ImGui::SameLine();
-    if (gated_button(s.widgets, "Cancel simulation", s.why_not(Action::CancelSimulation),
+    if (gated_button(s.widgets, "Cancel simulation", s.why_not(Command::CancelSimulation),
                      "Stop and restore the state before the run."))
       s.controller.cancel();
   } else {

@@ -13,77 +13,77 @@ std::string_view to_string(Stage s) {
   return "?";
 }
 
-std::string_view to_string(Action a) {
+std::string_view to_string(Command a) {
   switch (a) {
-    case Action::OpenMesh: return "open mesh";
-    case Action::Incise: return "incise";
-    case Action::Suture: return "suture";
-    case Action::AddPatch: return "add patch";
-    case Action::Resect: return "resect";
-    case Action::Remesh: return "remesh";
-    case Action::FixRegion: return "fix region";
-    case Action::EditMaterial: return "edit material";
-    case Action::Undo: return "undo";
-    case Action::Redo: return "redo";
-    case Action::StartSimulation: return "start simulation";
-    case Action::PauseResume: return "pause/resume";
-    case Action::CancelSimulation: return "cancel simulation";
-    case Action::ToggleBeforeAfter: return "before/after";
-    case Action::ShowColorMap: return "colour map";
-    case Action::MeasureCrossSection: return "measure cross-section";
-    case Action::SaveSnapshot: return "save snapshot";
-    case Action::ExportMesh: return "export mesh";
-    case Action::ContinuePlanning: return "continue planning";
+    case Command::OpenMesh: return "open mesh";
+    case Command::Incise: return "incise";
+    case Command::Suture: return "suture";
+    case Command::AddPatch: return "add patch";
+    case Command::Resect: return "resect";
+    case Command::Remesh: return "remesh";
+    case Command::FixRegion: return "fix region";
+    case Command::EditMaterial: return "edit material";
+    case Command::Undo: return "undo";
+    case Command::Redo: return "redo";
+    case Command::StartSimulation: return "start simulation";
+    case Command::PauseResume: return "pause/resume";
+    case Command::CancelSimulation: return "cancel simulation";
+    case Command::ToggleBeforeAfter: return "before/after";
+    case Command::ShowColorMap: return "colour map";
+    case Command::MeasureCrossSection: return "measure cross-section";
+    case Command::SaveSnapshot: return "save snapshot";
+    case Command::ExportMesh: return "export mesh";
+    case Command::ContinuePlanning: return "continue planning";
   }
   return "?";
 }
 
-std::optional<std::string> StageMachine::why_disabled(Action a) const {
-  const bool planning_edit = a == Action::Incise || a == Action::Suture || a == Action::AddPatch || a == Action::Resect ||
-                             a == Action::Remesh || a == Action::FixRegion || a == Action::EditMaterial ||
-                             a == Action::Undo || a == Action::Redo;
-  const bool inspecting = a == Action::ToggleBeforeAfter || a == Action::ShowColorMap ||
-                          a == Action::MeasureCrossSection || a == Action::ContinuePlanning;
+std::optional<std::string> StageMachine::why_disabled(Command a) const {
+  const bool planning_edit = a == Command::Incise || a == Command::Suture || a == Command::AddPatch || a == Command::Resect ||
+                             a == Command::Remesh || a == Command::FixRegion || a == Command::EditMaterial ||
+                             a == Command::Undo || a == Command::Redo;
+  const bool inspecting = a == Command::ToggleBeforeAfter || a == Command::ShowColorMap ||
+                          a == Command::MeasureCrossSection || a == Command::ContinuePlanning;
   switch (stage_) {
     case Stage::Plan:
-      if (a == Action::OpenMesh) return std::nullopt;
-      if (!has_mesh_ && (planning_edit || a == Action::StartSimulation || a == Action::SaveSnapshot ||
-                         a == Action::ExportMesh))
+      if (a == Command::OpenMesh) return std::nullopt;
+      if (!has_mesh_ && (planning_edit || a == Command::StartSimulation || a == Command::SaveSnapshot ||
+                         a == Command::ExportMesh))
         return "Open a mesh first (File > Open, or the bundled aortic arch).";
-      if (planning_edit || a == Action::StartSimulation || a == Action::SaveSnapshot ||
-          a == Action::ExportMesh)
+      if (planning_edit || a == Command::StartSimulation || a == Command::SaveSnapshot ||
+          a == Command::ExportMesh)
         return std::nullopt;
-      if (a == Action::PauseResume || a == Action::CancelSimulation)
+      if (a == Command::PauseResume || a == Command::CancelSimulation)
         return "No simulation is running.";
       if (inspecting) return "Available after a simulation, in the Inspect stage.";
       break;
     case Stage::Simulate:
-      if (a == Action::PauseResume || a == Action::CancelSimulation) return std::nullopt;
+      if (a == Command::PauseResume || a == Command::CancelSimulation) return std::nullopt;
       return "Not while the simulation runs: pause or cancel it first.";
     case Stage::Inspect:
-      if (inspecting || a == Action::SaveSnapshot || a == Action::ExportMesh) return std::nullopt;
-      if (a == Action::OpenMesh || planning_edit || a == Action::StartSimulation)
+      if (inspecting || a == Command::SaveSnapshot || a == Command::ExportMesh) return std::nullopt;
+      if (a == Command::OpenMesh || planning_edit || a == Command::StartSimulation)
         return "Inspecting a result: choose Continue planning to edit it further.";
-      if (a == Action::PauseResume || a == Action::CancelSimulation)
+      if (a == Command::PauseResume || a == Command::CancelSimulation)
         return "No simulation is running.";
       break;
   }
   return "Not available in the " + std::string(to_string(stage_)) + " stage.";
 }
 
-void StageMachine::require(Action a) const {
+void StageMachine::require(Command a) const {
   if (auto why = why_disabled(a))
     throw std::logic_error("'" + std::string(to_string(a)) + "' in stage " +
                            std::string(to_string(stage_)) + ": " + *why);
 }
 
 void StageMachine::mesh_loaded() {
-  require(Action::OpenMesh);
+  require(Command::OpenMesh);
   has_mesh_ = true;
 }
 
 void StageMachine::simulation_started() {
-  require(Action::StartSimulation);
+  require(Command::StartSimulation);
   stage_ = Stage::Simulate;
 }
 
@@ -93,12 +93,12 @@ void StageMachine::simulation_finished() {
 }
 
 void StageMachine::simulation_cancelled() {
-  require(Action::CancelSimulation);
+  require(Command::CancelSimulation);
   stage_ = Stage::Plan;
 }
 
 void StageMachine::continue_planning() {
-  require(Action::ContinuePlanning);
+  require(Command::ContinuePlanning);
   stage_ = Stage::Plan;
 }
 

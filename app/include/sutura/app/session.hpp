@@ -18,6 +18,7 @@
 
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/material.hpp"
+#include "sutura/engine/sim/area_barrier.hpp"
 #include "sutura/engine/sim/constraints.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/selection.hpp"
@@ -59,7 +60,8 @@ class SessionError : public std::runtime_error {
   std::string field_;
 };
 
-using Vec3f = std::array<double, 3>;
+/// A point or direction as a session line gives it (mm), in double precision.
+using Vec3d = std::array<double, 3>;
 
 // --- ops ----------------------------------------------------------------------------------
 
@@ -69,7 +71,7 @@ struct GenerateOp {
   std::variant<engine::TubeParams, engine::StripParams, engine::PatchParams,
                engine::CylinderPanelParams>
       params;
-  Vec3f translate = {0, 0, 0};  ///< mm, applied after generation
+  Vec3d translate = {0, 0, 0};  ///< mm, applied after generation
   /// Add the generated mesh to the existing object `object` as a separate part (e.g. the
   /// second of two strips to be sutured), made of that object's first material.
   bool append = false;
@@ -98,18 +100,18 @@ struct LoadOp {
 
 /// Camera of a snapshot: explicit eye/target/up, or a view direction fitted to the objects.
 struct CameraSpec {
-  std::optional<Vec3f> eye;     ///< with target: explicit camera
-  std::optional<Vec3f> target;
-  Vec3f up = {0, 0, 1};
-  Vec3f view = {-0.4, 1.0, -0.35};  ///< direction from the eye towards the scene when fitted
+  std::optional<Vec3d> eye;     ///< with target: explicit camera
+  std::optional<Vec3d> target;
+  Vec3d up = {0, 0, 1};
+  Vec3d view = {-0.4, 1.0, -0.35};  ///< direction from the eye towards the scene when fitted
   double fov_deg = 35.0;
 };
 
 /// A plane that cuts a snapshot open to show the lumen (render::ClipPlane): what lies on the side
 /// `normal` points to is not drawn, in both halves of a side-by-side.
 struct ClipSpec {
-  Vec3f point{};
-  Vec3f normal{};  ///< unit length (the parser normalises it)
+  Vec3d point{};
+  Vec3d normal{};  ///< unit length (the parser normalises it)
 };
 
 /// Per-vertex field shown as colours.
@@ -217,8 +219,11 @@ struct SolveOp {
   std::vector<std::string> objects;
   std::string model = "corotational";
   double load_factor = 1.0;  ///< fraction of the pending loads to reach, (0, 1]
+  /// Every field as the session's format version defines it where the line leaves it out
+  /// (session_defaults.hpp): the parser starts from there, never from the engine's defaults.
   engine::StaticSolverParams params;
-  bool collapse_barrier = false;  ///< add engine::AreaBarrier (defaults) to the system
+  bool collapse_barrier = false;  ///< add engine::AreaBarrier with `barrier` to the system
+  engine::AreaBarrierParams barrier;
   /// After a converged nonlinear solve, test whether the state is a stable equilibrium
   /// (engine::check_stability; reported, never changed).
   bool check_stability = false;
@@ -243,19 +248,21 @@ struct UnloadOp {
   SolveOp solve;
   int iterations = 20;
   double shape_tolerance = 0.0;
+  int acceleration_depth = 5;  ///< engine::UnloadParams'; not a session field, pinned per version
 };
 
 /// Implicit dynamics of the named objects (all when empty).
 struct SimulateOp {
   std::vector<std::string> objects;
   std::string model = "corotational";
-  engine::DynamicsParams params;
+  engine::DynamicsParams params;  ///< as SolveOp::params: the format version's defaults
   /// Rest-shape relaxation of the sutures made since the last run (paper, Sec. 2.3) instead
   /// of plain dynamics; its dynamics settings come from `params`.
   std::optional<engine::RelaxationParams> relax;
   /// Penalty contact between the simulated objects (none when absent).
   std::optional<engine::ContactParams> contact;
-  bool collapse_barrier = false;  ///< add engine::AreaBarrier (defaults) to the system
+  bool collapse_barrier = false;  ///< add engine::AreaBarrier with `barrier` to the system
+  engine::AreaBarrierParams barrier;
 };
 
 /// Records displacement and rotation of the vertex nearest to `point` (both measured from

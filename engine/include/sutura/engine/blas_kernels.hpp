@@ -8,7 +8,8 @@
 // factorisation is BLAS-3, so that fallback made one Newton iteration at 20k elements 780 ms
 // instead of 490 ms with the SkylakeX kernels (docs/performance.md). The kernels can only be
 // chosen through the environment variable OPENBLAS_CORETYPE before the library loads, hence a
-// restart of the program.
+// restart of the program, which is the executable's business (app/src/main.cpp): the engine
+// only says which kernels would be better.
 //
 // With another BLAS, or an OpenBLAS that recognised the CPU, or OPENBLAS_CORETYPE already set by
 // the user, nothing happens. Results remain deterministic for a given machine: only the BLAS
@@ -27,12 +28,5 @@ const char* better_blas_coretype();
 /// "OpenBLAS <kernels>" (e.g. "OpenBLAS SkylakeX") when OpenBLAS is the loaded BLAS, else
 /// "unknown". Reported with results: position hashes depend on the BLAS kernels.
 std::string blas_kernels_in_use();
-
-/// If better_blas_coretype() names kernels, sets OPENBLAS_CORETYPE and re-executes the running
-/// program (/proc/self/exe) with the same arguments, so OpenBLAS loads with those kernels; does
-/// not return then. Returns normally (the program continues with the kernels it has) when no
-/// change is needed or the restart fails. Call it first thing in main(), before any thread
-/// starts or any file is opened. `argv` is main's argv.
-void restart_with_better_blas_kernels(char** argv);
 
 }  // namespace sutura::engine

@@ -2,7 +2,7 @@
 // The planning workflow as a state machine: Plan -> Simulate -> Inspect (-> Plan again to
 // continue on the result, as the paper's consecutive simulation runs allow).
 //
-// The GUI asks `why_disabled(action)` before enabling a button or menu item and shows the
+// The GUI asks `why_disabled(command)` before enabling a button or menu item and shows the
 // returned reason as its tooltip, so gating lives in one place and is unit-tested.
 #include <optional>
 #include <string>
@@ -12,7 +12,9 @@ namespace sutura::ui {
 
 enum class Stage { Plan, Simulate, Inspect };
 
-enum class Action {
+/// What the surgeon asks the window to do (a button or menu item), gated by stage; a command
+/// may record session lines (app::Action), it is not one.
+enum class Command {
   OpenMesh,
   Incise,
   Suture,
@@ -35,7 +37,7 @@ enum class Action {
 };
 
 std::string_view to_string(Stage s);
-std::string_view to_string(Action a);
+std::string_view to_string(Command a);
 
 class StageMachine {
  public:
@@ -43,8 +45,8 @@ class StageMachine {
   [[nodiscard]] bool has_mesh() const { return has_mesh_; }
 
   /// Empty when `a` is allowed now; otherwise a sentence for the user saying why not.
-  [[nodiscard]] std::optional<std::string> why_disabled(Action a) const;
-  [[nodiscard]] bool allowed(Action a) const { return !why_disabled(a).has_value(); }
+  [[nodiscard]] std::optional<std::string> why_disabled(Command a) const;
+  [[nodiscard]] bool allowed(Command a) const { return !why_disabled(a).has_value(); }
 
   // Events. Each throws std::logic_error when called while not allowed (a GUI bug, not a
   // user error: the GUI must have checked why_disabled first).
@@ -55,7 +57,7 @@ class StageMachine {
   void continue_planning();     ///< Inspect -> Plan, on the simulated result
 
  private:
-  void require(Action a) const;
+  void require(Command a) const;
 
   Stage stage_ = Stage::Plan;
   bool has_mesh_ = false;

@@ -1,0 +1,138 @@
+#include "session_defaults.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "sutura/app/session.hpp"
+
+namespace sutura::app::detail {
+
+namespace {
+
+// A field added to (or removed from) an engine struct changes its size: give the field its
+// session value below, for every format version, then update the size here. Sizes are those
+// of x86-64 with libstdc++ (GCC and Clang alike); elsewhere the check is skipped.
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(engine::PcgParams) == 16, "PcgParams changed: pin the new field below");
+static_assert(sizeof(engine::StaticSolverParams) == 160,
+              "StaticSolverParams changed: pin the new field in static_solver_defaults");
+static_assert(sizeof(engine::DynamicsParams) == 128,
+              "DynamicsParams changed: pin the new field in dynamics_defaults");
+static_assert(sizeof(engine::RelaxationParams) == 360,
+              "RelaxationParams changed: pin the new field in relaxation_defaults");
+static_assert(sizeof(engine::UnloadParams) == 184, "UnloadParams changed: pin the new field in unload_defaults");
+static_assert(sizeof(engine::ContactParams) == 24, "ContactParams changed: pin the new field in contact_defaults");
+static_assert(sizeof(engine::AreaBarrierParams) == 16,
+              "AreaBarrierParams changed: pin the new field in area_barrier_defaults");
+#endif
+
+void check_version(int version) {
+  if (version < 1 || version > kSessionFormatVersion)
+    throw std::invalid_argument("session format version " + std::to_string(version) +
+                                " has no defaults in this build (1 to " +
+                                std::to_string(kSessionFormatVersion) + ")");
+}
+
+engine::PcgParams pcg_defaults() {
+  engine::PcgParams p;
+  p.tolerance = 1e-10;
+  p.max_iterations = 20000;
+  return p;
+}
+
+}  // namespace
+
+// Versions 1 to 3 share every value below (the versions differ in surgery ops only).
+engine::StaticSolverParams static_solver_defaults(int version) {
+  check_version(version);
+  engine::StaticSolverParams p;
+  p.lambda_start = 0.0;
+  p.lambda_end = 1.0;
+  p.load_steps = 1;
+  p.tolerance = 1e-8;
+  p.max_iterations = 30;
+  p.line_search = true;
+  p.max_step_cuts = 6;
+  p.energy_blowup = 1e12;
+  p.energy_reference = 0.0;
+  p.force_reference = 0.0;
+  p.shift_indefinite = false;
+  p.quasi_newton_steps = 30;
+  p.single_precision_solves = true;
+  p.min_area_ratio = 1e-2;
+  p.linear_solver = engine::LinearSolverKind::Cholmod;
+  p.pcg = pcg_defaults();
+  p.linear = false;
+  p.keep_going = nullptr;
+  return p;
+}
+
+engine::DynamicsParams dynamics_defaults(int version) {
+  check_version(version);
+  engine::DynamicsParams p;
+  p.scheme = engine::DynamicsScheme::Linearized;  // the parser makes it Newton with a relaxation
+  p.dt = 1e-3;
+  p.steps = 100;
+  p.mass_damping = 10.0;
+  p.stiffness_damping = 1e-3;
+  p.tolerance = 1e-6;
+  p.max_iterations = 20;
+  p.max_step_cuts = 4;
+  p.min_area_ratio = 1e-2;
+  p.force_reference = 0.0;
+  p.single_precision_solves = true;
+  p.corotated_damping = true;
+  p.linear_solver = engine::LinearSolverKind::Cholmod;
+  p.keep_going = nullptr;
+  p.pcg = pcg_defaults();
+  return p;
+}
+
+engine::RelaxationParams relaxation_defaults(int version) {
+  check_version(version);
+  engine::RelaxationParams p;
+  p.solver = engine::RelaxationSolver::Static;
+  p.steps = 10;
+  p.s_start = 0.0;
+  p.s_end = 1.0;
+  p.settle = true;
+  p.settle_steps = 20;
+  p.max_cuts = 6;
+  p.increment_tolerance = 1e-6;
+  p.predictor = true;
+  p.check_stability = true;
+  p.max_escapes = 3;
+  p.density.reset();
+  p.statics = static_solver_defaults(version);
+  p.dynamics = dynamics_defaults(version);
+  return p;
+}
+
+engine::UnloadParams unload_defaults(int version) {
+  check_version(version);
+  engine::UnloadParams p;
+  p.max_iterations = 20;
+  p.tolerance = 0.0;
+  p.acceleration_depth = 5;
+  p.solver = static_solver_defaults(version);
+  return p;
+}
+
+engine::ContactParams contact_defaults(int version) {
+  check_version(version);
+  engine::ContactParams p;
+  p.distance = 0.5;
+  p.stiffness = 1.0;
+  p.project_hessian = true;
+  return p;
+}
+
+engine::AreaBarrierParams area_barrier_defaults(int version) {
+  check_version(version);
+  engine::AreaBarrierParams p;
+  p.activation = 0.25;
+  p.factor = 1.0;
+  return p;
+}
+
+}  // namespace sutura::app::detail

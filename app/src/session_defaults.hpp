@@ -1,0 +1,39 @@
+#pragma once
+// What a session's solver ops mean where a field is left out: the engine settings of each
+// session format version, every field written out (session_defaults.cpp).
+//
+// Why: the parsers used to start from the engine structs' own member defaults, so a default
+// changed in the engine changed what every recorded session meant (it happened to the
+// dynamics scheme). A planning record must replay the same way years later, so the values are
+// pinned here, per format version, and the engine's defaults may move on. A field added to one
+// of these engine structs stops the build (a size check in session_defaults.cpp) until it is
+// given its value here, for every version, the old versions getting the value that keeps
+// their old behaviour. (The check sees a size change only; docs/session-format.md says so.)
+//
+// Runtime hooks and scales (keep_going, energy_reference, force_reference) are left empty:
+// the replay sets them, they carry no meaning of the session.
+#include "sutura/engine/sim/area_barrier.hpp"
+#include "sutura/engine/sim/contact.hpp"
+#include "sutura/engine/sim/dynamics.hpp"
+#include "sutura/engine/sim/static_solver.hpp"
+#include "sutura/engine/sim/unload.hpp"
+#include "sutura/engine/surgery/relaxation.hpp"
+
+namespace sutura::app::detail {
+
+/// `solve`, `unload` and a relaxation's increments. Throws std::invalid_argument for a
+/// version this build does not read (below 1 or above kSessionFormatVersion).
+engine::StaticSolverParams static_solver_defaults(int version);
+/// `simulate` (plain dynamics and a relaxation's dynamics). Throws as above.
+engine::DynamicsParams dynamics_defaults(int version);
+/// `simulate`'s `relax`, with statics and dynamics from the two functions above. Throws as above.
+engine::RelaxationParams relaxation_defaults(int version);
+/// `unload`: its fixed-point iteration (the solves' settings are static_solver_defaults).
+/// Throws as above.
+engine::UnloadParams unload_defaults(int version);
+/// `simulate`'s `contact`. Throws as above.
+engine::ContactParams contact_defaults(int version);
+/// The collapse barrier of `"collapse_barrier": true`. Throws as above.
+engine::AreaBarrierParams area_barrier_defaults(int version);
+
+}  // namespace sutura::app::detail

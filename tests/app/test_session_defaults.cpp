@@ -1,0 +1,121 @@
+// What a solver op means where a session line leaves a field out is pinned per format version
+// (app/src/session_defaults.hpp), not taken from the engine's member defaults: these are the
+// values every recorded session of versions 1 to 3 was replayed with. A change here changes
+// what recorded sessions mean (tests/golden/position_hashes.txt shows it on the bundled ones).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "../../app/src/session_defaults.hpp"
+#include "sutura/app/session.hpp"
+
+using namespace sutura;
+using namespace sutura::app::detail;
+
+namespace {
+
+app::Session parse_at(int version, const std::string& lines) {
+  return app::parse_session(
+      "{\"format\": \"sutura-session\", \"version\": " + std::to_string(version) + "}\n" + lines,
+      "/tmp/defaults.jsonl");
+}
+
+}  // namespace
+
+TEST(SessionDefaults, SolverSettingsArePinnedForEveryVersion) {
+  for (int v = 1; v <= app::kSessionFormatVersion; ++v) {
+    SCOPED_TRACE(v);
+    const engine::StaticSolverParams s = static_solver_defaults(v);
+    EXPECT_EQ(s.load_steps, 1);
+    EXPECT_EQ(s.tolerance, 1e-8);
+    EXPECT_EQ(s.max_iterations, 30);
+    EXPECT_TRUE(s.line_search);
+    EXPECT_EQ(s.max_step_cuts, 6);
+    EXPECT_EQ(s.energy_blowup, 1e12);
+    EXPECT_FALSE(s.shift_indefinite);
+    EXPECT_EQ(s.quasi_newton_steps, 30);
+    EXPECT_TRUE(s.single_precision_solves);
+    EXPECT_EQ(s.min_area_ratio, 1e-2);
+    EXPECT_EQ(s.linear_solver, engine::LinearSolverKind::Cholmod);
+    EXPECT_EQ(s.pcg.tolerance, 1e-10);
+    EXPECT_EQ(s.pcg.max_iterations, 20000);
+    EXPECT_FALSE(s.linear);
+    EXPECT_FALSE(s.keep_going);
+
+    const engine::DynamicsParams d = dynamics_defaults(v);
+    EXPECT_EQ(d.scheme, engine::DynamicsScheme::Linearized);
+    EXPECT_EQ(d.dt, 1e-3);
+    EXPECT_EQ(d.steps, 100);
+    EXPECT_EQ(d.mass_damping, 10.0);
+    EXPECT_EQ(d.stiffness_damping, 1e-3);
+    EXPECT_EQ(d.tolerance, 1e-6);
+    EXPECT_EQ(d.max_iterations, 20);
+    EXPECT_EQ(d.max_step_cuts, 4);
+    EXPECT_EQ(d.min_area_ratio, 1e-2);
+    EXPECT_TRUE(d.single_precision_solves);
+    EXPECT_TRUE(d.corotated_damping);
+
+    const engine::RelaxationParams r = relaxation_defaults(v);
+    EXPECT_EQ(r.solver, engine::RelaxationSolver::Static);
+    EXPECT_EQ(r.steps, 10);
+    EXPECT_EQ(r.s_end, 1.0);
+    EXPECT_TRUE(r.settle);
+    EXPECT_EQ(r.settle_steps, 20);
+    EXPECT_EQ(r.max_cuts, 6);
+    EXPECT_EQ(r.increment_tolerance, 1e-6);
+    EXPECT_TRUE(r.predictor);
+    EXPECT_TRUE(r.check_stability);
+    EXPECT_EQ(r.max_escapes, 3);
+    EXPECT_FALSE(r.density.has_value());
+    EXPECT_EQ(r.statics.tolerance, 1e-8);
+    EXPECT_EQ(r.dynamics.dt, 1e-3);
+
+    const engine::UnloadParams u = unload_defaults(v);
+    EXPECT_EQ(u.max_iterations, 20);
+    EXPECT_EQ(u.tolerance, 0.0);
+    EXPECT_EQ(u.acceleration_depth, 5);
+    EXPECT_EQ(contact_defaults(v).distance, 0.5);
+    EXPECT_EQ(contact_defaults(v).stiffness, 1.0);
+    EXPECT_TRUE(contact_defaults(v).project_hessian);
+    EXPECT_EQ(area_barrier_defaults(v).activation, 0.25);
+    EXPECT_EQ(area_barrier_defaults(v).factor, 1.0);
+  }
+  EXPECT_THROW(static_solver_defaults(0), std::invalid_argument);
+  EXPECT_THROW(dynamics_defaults(app::kSessionFormatVersion + 1), std::invalid_argument);
+}
+
+// The parser starts from the pinned values, at the file's own version: a line that gives
+// nothing gets them, a line that gives a field changes that field only.
+TEST(SessionDefaults, TheParserStartsFromTheFilesVersion) {
+  for (int v : {1, app::kSessionFormatVersion}) {
+    SCOPED_TRACE(v);
+    const app::Session s = parse_at(
+        v, "{\"op\": \"solve\"}\n"
+           "{\"op\": \"solve\", \"tolerance\": 1e-6}\n"
+           "{\"op\": \"simulate\", \"relax\": {\"steps\": 4}, \"contact\": {}}\n"
+           "{\"op\": \"unload\", \"object\": \"a\"}\n");
+    const auto& plain = std::get<app::SolveOp>(s.actions.at(0).op);
+    const engine::StaticSolverParams pinned = static_solver_defaults(v);
+    EXPECT_EQ(plain.params.tolerance, pinned.tolerance);
+    EXPECT_EQ(plain.params.max_iterations, pinned.max_iterations);
+    EXPECT_EQ(plain.params.quasi_newton_steps, pinned.quasi_newton_steps);
+    EXPECT_EQ(plain.barrier.activation, area_barrier_defaults(v).activation);
+    const auto& given = std::get<app::SolveOp>(s.actions.at(1).op);
+    EXPECT_EQ(given.params.tolerance, 1e-6);
+    EXPECT_EQ(given.params.max_iterations, pinned.max_iterations);
+    const auto& sim = std::get<app::SimulateOp>(s.actions.at(2).op);
+    ASSERT_TRUE(sim.relax.has_value());
+    EXPECT_EQ(sim.relax->steps, 4);
+    EXPECT_EQ(sim.relax->max_escapes, relaxation_defaults(v).max_escapes);
+    EXPECT_EQ(sim.relax->increment_tolerance, relaxation_defaults(v).increment_tolerance);
+    EXPECT_EQ(sim.relax->statics.max_iterations, pinned.max_iterations);
+    EXPECT_EQ(sim.params.mass_damping, dynamics_defaults(v).mass_damping);
+    EXPECT_EQ(sim.params.scheme, engine::DynamicsScheme::Newton);  // with a relaxation
+    ASSERT_TRUE(sim.contact.has_value());
+    EXPECT_EQ(sim.contact->distance, contact_defaults(v).distance);
+    const auto& unload = std::get<app::UnloadOp>(s.actions.at(3).op);
+    EXPECT_EQ(unload.iterations, unload_defaults(v).max_iterations);
+    EXPECT_EQ(unload.acceleration_depth, unload_defaults(v).acceleration_depth);
+  }
+}
