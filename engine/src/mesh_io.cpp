@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -15,8 +18,8 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <assimp/Importer.hpp>
 
+#include "assimp_library.hpp"
 #include "ply_check.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/errors.hpp"
@@ -547,7 +550,17 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
     }
   }
 
-  Assimp::Importer importer;
+  const detail::AssimpLibrary* ai = nullptr;
+  try {
+    ai = &detail::assimp();
+  } catch (const std::exception& e) {
+    fail(Kind::Unreadable, file, e.what());
+  }
+  if (stl_body.size() > std::numeric_limits<unsigned int>::max())
+    fail(Kind::TooLarge, file, "is too large to be read from memory");
+  const std::lock_guard<std::mutex> lock(*ai->lock);  // assimp's last error is global
+  const auto release = [ai](const aiScene* scene) { ai->release(scene); };
+  std::unique_ptr<const aiScene, decltype(release)> owned(nullptr, release);
   const auto read = [&](const auto& step) {
     const aiScene* scene = nullptr;
     try {
@@ -556,17 +569,21 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
       fail(Kind::Unreadable, file, std::string("cannot be read: ") + e.what());
     }
     if (scene == nullptr) {
-      fail(Kind::Unreadable, file, std::string("cannot be read: ") + importer.GetErrorString());
+      const char* why = ai->error_string();
+      fail(Kind::Unreadable, file, std::string("cannot be read: ") + (why != nullptr ? why : ""));
     }
     return scene;
   };
-  check_raw_scene(*read([&] {
-    return stl_body.empty() ? importer.ReadFile(file.string(), 0)
-                            : importer.ReadFileFromMemory(stl_body.data(), stl_body.size(), 0, "stl");
-  }), file);
+  owned.reset(read([&] {
+    return stl_body.empty() ? ai->import_file(file.c_str(), 0)
+                            : ai->import_memory(stl_body.data(), static_cast<unsigned int>(stl_body.size()), 0, "stl");
+  }));
+  check_raw_scene(*owned, file);
   // No aiProcess_JoinIdenticalVertices: it merges exact duplicates only; weld() does both.
-  const aiScene* scene = read(
-      [&] { return importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType); });
+  // A failed post-processing releases the scene itself.
+  const aiScene* processed = owned.release();
+  owned.reset(read([&] { return ai->apply_post_processing(processed, aiProcess_Triangulate | aiProcess_SortByPType); }));
+  const aiScene* scene = owned.get();
 
   const Soup soup = collect_triangles(*scene);
   if (soup.triangles.empty()) {

@@ -1,12 +1,51 @@
 // Headless OpenGL 3.3 core context through OSMesa (Mesa's gallium llvmpipe on the CPU).
-#include <GL/osmesa.h>
+#include <dlfcn.h>
 
 #include <array>
 #include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <type_traits>
 
+#include "osmesa_library.hpp"
 #include "sutura/render/context.hpp"
 
 namespace sutura::render {
+
+namespace detail {
+
+OsMesaLibrary load_osmesa(const std::string& soname) {
+  void* handle = dlopen(soname.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    const char* why = dlerror();
+    throw GlError("cannot load " + soname + " for off-screen drawing (install the Debian package "
+                  "libosmesa6): " + (why != nullptr ? why : "unknown error"));
+  }
+  OsMesaLibrary lib;
+  const auto resolve = [&](auto& fn, const char* name) {
+    fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(handle, name));
+    if (fn == nullptr)
+      throw GlError(soname + " has no " + name + " (Mesa 20 or newer is needed; Debian package "
+                    "libosmesa6)");
+  };
+  resolve(lib.create_context_attribs, "OSMesaCreateContextAttribs");
+  resolve(lib.destroy_context, "OSMesaDestroyContext");
+  resolve(lib.make_current, "OSMesaMakeCurrent");
+  resolve(lib.get_proc_address, "OSMesaGetProcAddress");
+  return lib;
+}
+
+const OsMesaLibrary& osmesa() {
+  static std::mutex mutex;
+  static std::optional<OsMesaLibrary> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (!loaded) loaded = load_osmesa("libOSMesa.so.8");
+  return *loaded;
+}
+
+}  // namespace detail
+
 namespace {
 
 class OsMesaContext final : public GlContext {
@@ -30,34 +69,35 @@ class OsMesaContext final : public GlContext {
                               OSMESA_CONTEXT_MINOR_VERSION,
                               3,
                               0};
-    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    context_ = osmesa_.create_context_attribs(attributes, nullptr);
     if (context_ == nullptr) {
       throw GlError("cannot create an OSMesa OpenGL 3.3 core context (is Mesa >= 20 installed?)");
     }
     try {
       make_current();
     } catch (...) {
-      OSMesaDestroyContext(context_);
+      osmesa_.destroy_context(context_);
       throw;
     }
   }
 
-  ~OsMesaContext() override { OSMesaDestroyContext(context_); }
+  ~OsMesaContext() override { osmesa_.destroy_context(context_); }
   OsMesaContext(const OsMesaContext&) = delete;
   OsMesaContext& operator=(const OsMesaContext&) = delete;
 
   void make_current() override {
-    if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, kDummySize, kDummySize)) {
+    if (!osmesa_.make_current(context_, dummy_.data(), GL_UNSIGNED_BYTE, kDummySize, kDummySize)) {
       throw GlError("OSMesaMakeCurrent failed");
     }
   }
 
   void* proc_address(const char* name) const override {
-    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+    return reinterpret_cast<void*>(osmesa_.get_proc_address(name));
   }
 
  private:
   static constexpr int kDummySize = 4;
+  const detail::OsMesaLibrary& osmesa_ = detail::osmesa();  // first: throws when it cannot load
   OSMesaContext context_ = nullptr;
   std::array<std::uint8_t, 4 * kDummySize * kDummySize> dummy_{};
 };

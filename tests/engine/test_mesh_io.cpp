@@ -12,6 +12,7 @@
 #include <numbers>
 #include <set>
 
+#include "../../engine/src/assimp_library.hpp"
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
@@ -611,3 +612,23 @@ TEST(LoadErrors, FlippedNeighbour) {
 
 }  // namespace
 }  // namespace sutura::engine
+
+// assimp is loaded at the first mesh file it reads; without it, the error names the library
+// and the Debian package, and a library without its entry points is refused by name.
+TEST(MeshIoAssimp, AMissingLibraryIsNamedWithItsPackage) {
+  try {
+    (void)sutura::engine::detail::load_assimp("libassimp-not-here.so.5");
+    ADD_FAILURE() << "a missing library loaded";
+  } catch (const std::runtime_error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("libassimp-not-here.so.5"), std::string::npos) << m;
+    EXPECT_NE(m.find("libassimp5"), std::string::npos) << m;
+  }
+  try {
+    (void)sutura::engine::detail::load_assimp("libm.so.6");
+    ADD_FAILURE() << "libm was taken for assimp";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("aiImportFile"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(sutura::engine::detail::assimp().import_file, nullptr);  // the real one
+}

@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 
+#include "../../render/src/osmesa_library.hpp"
 #include "sutura/render/renderer.hpp"
 #include "test_meshes.hpp"
 
@@ -565,3 +566,24 @@ TEST(RenderWindow, WithoutADisplayThrowsGlError) {
 
 }  // namespace
 }  // namespace sutura::render
+
+// OSMesa is loaded when the first off-screen context is made; without it, the error names
+// the library and the Debian package.
+TEST(RenderOsMesa, AMissingLibraryIsNamedWithItsPackage) {
+  try {
+    (void)sutura::render::detail::load_osmesa("libOSMesa-not-here.so.8");
+    ADD_FAILURE() << "a missing library loaded";
+  } catch (const sutura::render::GlError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("libOSMesa-not-here.so.8"), std::string::npos) << m;
+    EXPECT_NE(m.find("libosmesa6"), std::string::npos) << m;
+  }
+  // A library without the entry points (libm has none of them) is refused by name too.
+  try {
+    (void)sutura::render::detail::load_osmesa("libm.so.6");
+    ADD_FAILURE() << "libm was taken for OSMesa";
+  } catch (const sutura::render::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("OSMesaCreateContextAttribs"), std::string::npos) << e.what();
+  }
+  EXPECT_NE(sutura::render::detail::osmesa().get_proc_address, nullptr);  // the real one
+}
