@@ -33,7 +33,7 @@ struct PatchPlan {
   /// The patch as cut from the sheet (its rest shape): flat, moved rigidly onto the tangent
   /// plane at the incision's middle, so its rest triads are in the host's world frame.
   SurfaceMesh rest;
-  SurfaceMesh placed;  ///< same topology, laid onto the host surface over the incision
+  SurfaceMesh placed;  ///< same topology, a tent over the closed incision (see plan_patch)
   BoundaryChain lip_left, lip_right;      ///< host chains (boundary direction)
   BoundaryChain edge_left, edge_right;    ///< patch chains (boundary direction) meeting them
   double incision_length = 0.0;           ///< mm, mean lip length
@@ -47,8 +47,11 @@ struct PatchPlan {
 /// slit (both ends shared by the two lips) takes an ellipse or a diamond; an incision opened
 /// from the boundary (start on the boundary, end inside) takes a triangle whose apex meets the
 /// end and whose base spans the opened boundary (the widening gusset of an anastomosis).
-/// The patch lies in the tangent plane at the incision's middle (long axis along the cut,
-/// normal along the host's), each vertex then projected onto the host surface.
+/// The rest patch lies in the tangent plane at the incision's middle (long axis along the cut,
+/// normal along the host's). The placed one is a narrow tent over the closed slit: along the
+/// cut it follows the lips, across it it is compressed (its edges within 0.4 lip edge lengths
+/// of their lips) and arched outwards by up to half its half-width; the relaxation opens the
+/// slit to the patch's width.
 /// Throws InvalidArgument for an unknown configuration (no such lips, a triangle on a slit, an
 /// ellipse on a boundary incision) or bad sizes: width and length more than a factor of 50
 /// apart, or more than max_faces faces.
