@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sutura/app/simulation.hpp"
 #include "sutura/engine/measure/vertex_fields.hpp"
 #include "sutura/engine/shell/shell_model.hpp"
 
@@ -11,8 +12,9 @@ namespace {
 
 render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y()), float(p.z())}; }
 
-// Model 1's per-element measures (the default shell model) averaged to the vertices with
-// face-area weights, for the current state with its simulated nodal rotations. The before
+// The per-element measures of the shell model whose run produced the current state
+// (SurfaceAttributes::state_model; Model 1, the default, before any run) averaged to the
+// vertices with face-area weights, for the current state with its simulated nodal rotations. The before
 // state's are those `unload` kept (an imaged vessel under its loads), or zero everywhere for a
 // stress-free reference (its topology may differ from today's after incisions and sutures, so
 // they are not recomputed).
@@ -25,7 +27,7 @@ std::vector<float> element_field(Field field, const SceneObject& obj, const engi
     if (v.size() != state.num_vertices()) return std::vector<float>(state.num_vertices(), 0.0f);
     return std::vector<float>(v.begin(), v.end());
   }
-  const auto model = engine::make_corotational_shell();
+  const auto model = state_model_of(obj);
   const engine::ShellProblem problem{&state.faces(), &obj.sim.rest, &obj.sim.materials,
                                      &obj.sim.face_material, state.num_vertices()};
   const engine::ElementMeasures m = model->measures(problem, obj.sim.state);

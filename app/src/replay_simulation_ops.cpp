@@ -29,7 +29,7 @@ void make_before(SceneObject& obj, const std::vector<engine::Vec3>& positions) {
   // (The mesh now, not as loaded: a remesh may have come between.)
   obj.before = obj.mesh;
   obj.before.set_positions(positions);
-  const auto shell = engine::make_corotational_shell();
+  const auto shell = state_model_of(obj);  // the model whose solve made this state
   const engine::ShellProblem problem{&obj.mesh.faces(), &obj.sim.rest, &obj.sim.materials,
                                      &obj.sim.face_material, obj.mesh.num_vertices()};
   obj.before_measures = engine::face_to_vertex(obj.before, shell->measures(problem, obj.sim.state));

@@ -42,6 +42,16 @@ std::unique_ptr<engine::ShellModel> make_model(const std::string& name) {
   throw std::invalid_argument("unknown shell model '" + name + "' (corotational, discrete)");
 }
 
+std::unique_ptr<engine::ShellModel> state_model_of(const SceneObject& obj) {
+  // state_model holds the engine's name of the model (ShellModel::name()).
+  for (const char* name : {"corotational", "discrete"}) {
+    std::unique_ptr<engine::ShellModel> model = make_model(name);
+    if (obj.sim.state_model.empty() || model->name() == obj.sim.state_model) return model;
+  }
+  throw std::invalid_argument("'" + obj.name + "' was simulated with an unknown shell model '" +
+                              obj.sim.state_model + "'");
+}
+
 namespace {
 
 void append_loads(engine::Loads& into, const engine::Loads& from, std::size_t node_offset,

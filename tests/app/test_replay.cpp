@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -8,12 +10,15 @@
 #include <thread>
 #include <utility>
 
+#include "sutura/app/object_view.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session_runner.hpp"
 #include "sutura/engine/blas_kernels.hpp"
 #include "sutura/engine/compute_threads.hpp"
 #include "sutura/engine/generators.hpp"
+#include "sutura/engine/measure/vertex_fields.hpp"
+#include "sutura/engine/shell/shell_model.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/render/image.hpp"
 
@@ -568,4 +573,46 @@ TEST(Replay, FileNamesThatAreNotUtf8AreReportedNotFatal) {
                                            << R"({"op": "generate", "object": "t", "shape": "tube"})" "\n";
   EXPECT_EQ(run_sutura("replay '" + session.string() + "' --out " + (out / "o").string() + " -q", &err), 0) << err;
   EXPECT_EQ(nlohmann::json::parse(read_text(out / "o" / "report.json"))["status"], "ok");
+}
+
+// Colour fields are measured with the model whose run produced the shape: after a Model 2
+// (discrete) solve, its strain energy, not Model 1's (which differs: ANDES and DKT against
+// constant-strain triangles and hinges).
+TEST(Replay, FieldsOfAModel2RunComeFromModel2) {
+  fs::path dir = fresh_dir("fields_model");
+  std::ofstream(dir / "s.jsonl")
+      << "{\"format\": \"sutura-session\", \"version\": 3}\n"
+         "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+         "\"segments_around\": 16, \"segments_along\": 10}\n"
+         "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
+         "\"thickness\": 0.6}\n"
+         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\"}\n"
+         "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
+         "{\"op\": \"solve\", \"model\": \"discrete\", \"load_steps\": 2}\n";
+  const Session session = load_session(dir / "s.jsonl");
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  SessionRunner runner(session.file, session.description, o);
+  for (const Action& a : session.actions) runner.execute(a);
+  const SceneObject& obj = *runner.workspace().find("s");
+  EXPECT_EQ(obj.sim.state_model, sutura::engine::make_discrete_shell()->name());
+  const std::vector<float> shown = field_values(Field::EnergyDensity, obj, obj.mesh);
+  const auto energy = [&](const sutura::engine::ShellModel& model) {
+    const sutura::engine::ShellProblem problem{&obj.mesh.faces(), &obj.sim.rest, &obj.sim.materials,
+                                               &obj.sim.face_material, obj.mesh.num_vertices()};
+    return sutura::engine::face_to_vertex(obj.mesh, model.measures(problem, obj.sim.state).energy_density);
+  };
+  const std::vector<double> model2 = energy(*sutura::engine::make_discrete_shell());
+  const std::vector<double> model1 = energy(*sutura::engine::make_corotational_shell());
+  ASSERT_EQ(shown.size(), model2.size());
+  double off2 = 0.0, off1 = 0.0, top = 0.0;
+  for (std::size_t v = 0; v < shown.size(); ++v) {
+    off2 = std::max(off2, std::abs(shown[v] - model2[v]));
+    off1 = std::max(off1, std::abs(shown[v] - model1[v]));
+    top = std::max(top, model2[v]);
+  }
+  ASSERT_GT(top, 0.0);  // the tube is inflated
+  EXPECT_LE(off2, 1e-6 * top);   // Model 2's, to float precision
+  EXPECT_GT(off1, 1e-2 * top);   // and not Model 1's
+  fs::remove_all(dir);
 }

@@ -21,6 +21,11 @@ namespace sutura::app {
 /// "corotational" (default, 6 DOF) | "discrete" (3 DOF); throws std::invalid_argument.
 std::unique_ptr<engine::ShellModel> make_model(const std::string& name);
 
+/// The shell model whose run produced the object's current state (SurfaceAttributes::
+/// state_model), Model 1 (corotational) before any run: what its strain, bending and energy
+/// fields are measured with.
+std::unique_ptr<engine::ShellModel> state_model_of(const SceneObject& obj);
+
 /// What to change after a relaxation (to s = `until`) failed with the engine's `message`
 /// under these settings, in plain words with the session field and the window's control that
 /// change it ("Advice: ...", one or two sentences), or empty when the message names no cause
