@@ -350,10 +350,7 @@ json Run::execute(const UnloadOp& op) {
   const auto model = make_model(op.solve.model);
   MergedSystem merged(objs, *model, nullptr, op.solve.collapse_barrier ? &op.solve.barrier : nullptr);
   if (op.solve.minimize) require_conservative_pressure(merged);
-  engine::UnloadParams params;
-  params.max_iterations = op.iterations;
-  params.tolerance = op.shape_tolerance;
-  params.acceleration_depth = op.acceleration_depth;
+  engine::UnloadParams params = op.params;
   params.solver = op.solve.params;
   params.solver.keep_going = [this] { return !past_deadline(); };
   const std::vector<engine::Vec3> imaged = merged.state().x;

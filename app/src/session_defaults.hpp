@@ -10,8 +10,9 @@
 // given its value here, for every version, the old versions getting the value that keeps
 // their old behaviour. (The check sees a size change only; docs/session-format.md says so.)
 //
-// Runtime hooks and scales (keep_going, energy_reference, force_reference) are left empty:
-// the replay sets them, they carry no meaning of the session.
+// keep_going, a runtime hook, is left empty (the replay sets it). energy_reference and
+// force_reference are pinned to 0 (no floor on the solver's scales), which is what a session
+// means; only a relaxation raises them, inside the engine.
 #include "sutura/engine/sim/area_barrier.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/sim/dynamics.hpp"

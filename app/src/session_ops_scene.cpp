@@ -1,4 +1,5 @@
 // Parsers of the scene ops: generate, load, snapshot, export, report.
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -106,12 +107,15 @@ ClipSpec parse_clip(Fields& c) {
   ClipSpec clip;
   clip.point = c.required_vec3("point");
   clip.normal = c.required_vec3("normal");
-  // Drawn in single precision: the point must stay finite there.
+  // Drawn in single precision, with n.p formed there: the point must stay far inside float.
   for (double x : clip.point)
-    if (!std::isfinite(static_cast<float>(x))) c.fail("point", "must be within +-1e38 mm");
+    if (!(std::abs(x) <= 1e30)) c.fail("point", "must be within +-1e30 mm");
+  // Scaled by its largest component first, so that any finite, non-zero length normalises.
+  const double big = std::max({std::abs(clip.normal[0]), std::abs(clip.normal[1]), std::abs(clip.normal[2])});
+  if (!(big > 0.0)) c.fail("normal", "must not be the zero vector");
+  for (double& x : clip.normal) x /= big;
   const double len = std::sqrt(clip.normal[0] * clip.normal[0] + clip.normal[1] * clip.normal[1] +
                                clip.normal[2] * clip.normal[2]);
-  if (!(len > 1e-12) || !std::isfinite(len)) c.fail("normal", "must not be the zero vector");
   for (double& x : clip.normal) x /= len;
   c.finish();
   return clip;

@@ -190,17 +190,14 @@ UnloadOp parse_unload(Fields& f) {
   UnloadOp op;
   op.solve.params = static_solver_defaults(f.format_version());
   op.solve.barrier = area_barrier_defaults(f.format_version());
-  const engine::UnloadParams pinned = unload_defaults(f.format_version());
-  op.iterations = pinned.max_iterations;
-  op.shape_tolerance = pinned.tolerance;
-  op.acceleration_depth = pinned.acceleration_depth;
+  op.params = unload_defaults(f.format_version());
   op.object = object_name(f);
   parse_solver_settings(f, op.solve);
   if (op.solve.params.linear)
     f.fail("analysis", "unload needs the nonlinear analysis (a linear one has no loaded shape to match)");
-  op.iterations = f.optional_int("iterations", op.iterations, 1, 1000);
-  op.shape_tolerance = f.optional_number("shape_tolerance", op.shape_tolerance);
-  if (!(op.shape_tolerance >= 0.0)) f.fail("shape_tolerance", "must be >= 0 (mm; 0 = 1 % of the mean edge length)");
+  op.params.max_iterations = f.optional_int("iterations", op.params.max_iterations, 1, 1000);
+  op.params.tolerance = f.optional_number("shape_tolerance", op.params.tolerance);
+  if (!(op.params.tolerance >= 0.0)) f.fail("shape_tolerance", "must be >= 0 (mm; 0 = 1 % of the mean edge length)");
   return op;
 }
 

@@ -18,8 +18,10 @@ AssimpLibrary load_assimp(const std::string& soname) {
   AssimpLibrary lib;
   const auto resolve = [&](auto& fn, const char* name) {
     fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(handle, name));
-    if (fn == nullptr)
+    if (fn == nullptr) {
+      dlclose(handle);
       throw std::runtime_error(soname + " has no " + name + " (Debian package libassimp5)");
+    }
   };
   resolve(lib.import_file, "aiImportFile");
   resolve(lib.import_memory, "aiImportFileFromMemory");

@@ -493,6 +493,47 @@ std::string stl_bytes(const SurfaceMesh& mesh) {
 
 }  // namespace
 
+namespace {
+
+// The triangles of `file` (or of `stl_body`, when not empty: an STL read without its trailing
+// bytes) through assimp, and whether the scene had no meshes at all. The raw scene is checked
+// (check_raw_scene) before any post-processing: assimp's triangulation trusts its input, and
+// its C interface mishandles a post-processing step that fails (it releases the scene a second
+// time), so nothing that could make one fail may reach it. The library's lock (its last error
+// is global) is held only while assimp works; the scene is gone when this returns.
+Soup read_with_assimp(const fs::path& file, const std::string& stl_body, bool& no_meshes) {
+  const detail::AssimpLibrary* ai = nullptr;
+  try {
+    ai = &detail::assimp();
+  } catch (const std::exception& e) {
+    fail(Kind::Unreadable, file, e.what());
+  }
+  const std::lock_guard<std::mutex> lock(*ai->lock);
+  const auto release = [ai](const aiScene* scene) { ai->release(scene); };
+  std::unique_ptr<const aiScene, decltype(release)> owned(nullptr, release);
+  try {
+    owned.reset(stl_body.empty()
+                    ? ai->import_file(file.c_str(), 0)
+                    : ai->import_memory(stl_body.data(), static_cast<unsigned int>(stl_body.size()), 0, "stl"));
+  } catch (const std::exception& e) {  // assimp reports through nullptr; this is a safety net
+    fail(Kind::Unreadable, file, std::string("cannot be read: ") + e.what());
+  }
+  if (!owned) {
+    const char* why = ai->error_string();
+    fail(Kind::Unreadable, file, std::string("cannot be read: ") + (why != nullptr ? why : "assimp gave no reason"));
+  }
+  check_raw_scene(*owned, file);
+  // No aiProcess_JoinIdenticalVertices: it merges exact duplicates only; weld() does both. A
+  // failed post-processing releases the scene itself, and sets no error of its own.
+  const aiScene* processed = ai->apply_post_processing(owned.release(), aiProcess_Triangulate | aiProcess_SortByPType);
+  if (processed == nullptr) fail(Kind::Unreadable, file, "cannot be triangulated (assimp's post-processing failed)");
+  owned.reset(processed);
+  no_meshes = owned->mNumMeshes == 0;
+  return collect_triangles(*owned);
+}
+
+}  // namespace
+
 SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
   if (!(options.weld_tolerance >= 0.0) || !std::isfinite(options.weld_tolerance)) {
     std::ostringstream os;
@@ -550,44 +591,12 @@ SurfaceMesh load_mesh(const fs::path& file, const ImportOptions& options) {
     }
   }
 
-  const detail::AssimpLibrary* ai = nullptr;
-  try {
-    ai = &detail::assimp();
-  } catch (const std::exception& e) {
-    fail(Kind::Unreadable, file, e.what());
-  }
   if (stl_body.size() > std::numeric_limits<unsigned int>::max())
     fail(Kind::TooLarge, file, "is too large to be read from memory");
-  const std::lock_guard<std::mutex> lock(*ai->lock);  // assimp's last error is global
-  const auto release = [ai](const aiScene* scene) { ai->release(scene); };
-  std::unique_ptr<const aiScene, decltype(release)> owned(nullptr, release);
-  const auto read = [&](const auto& step) {
-    const aiScene* scene = nullptr;
-    try {
-      scene = step();
-    } catch (const std::exception& e) {  // assimp reports through nullptr; this is a safety net
-      fail(Kind::Unreadable, file, std::string("cannot be read: ") + e.what());
-    }
-    if (scene == nullptr) {
-      const char* why = ai->error_string();
-      fail(Kind::Unreadable, file, std::string("cannot be read: ") + (why != nullptr ? why : ""));
-    }
-    return scene;
-  };
-  owned.reset(read([&] {
-    return stl_body.empty() ? ai->import_file(file.c_str(), 0)
-                            : ai->import_memory(stl_body.data(), static_cast<unsigned int>(stl_body.size()), 0, "stl");
-  }));
-  check_raw_scene(*owned, file);
-  // No aiProcess_JoinIdenticalVertices: it merges exact duplicates only; weld() does both.
-  // A failed post-processing releases the scene itself.
-  const aiScene* processed = owned.release();
-  owned.reset(read([&] { return ai->apply_post_processing(processed, aiProcess_Triangulate | aiProcess_SortByPType); }));
-  const aiScene* scene = owned.get();
-
-  const Soup soup = collect_triangles(*scene);
+  bool no_meshes = false;
+  const Soup soup = read_with_assimp(file, stl_body, no_meshes);
   if (soup.triangles.empty()) {
-    if (format == Format::Obj && scene->mNumMeshes == 0) explain_empty_obj(file);
+    if (format == Format::Obj && no_meshes) explain_empty_obj(file);
     fail(Kind::Empty, file, no_triangles);
   }
   return build_mesh(soup, options, file);

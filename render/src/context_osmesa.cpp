@@ -25,9 +25,11 @@ OsMesaLibrary load_osmesa(const std::string& soname) {
   OsMesaLibrary lib;
   const auto resolve = [&](auto& fn, const char* name) {
     fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(handle, name));
-    if (fn == nullptr)
+    if (fn == nullptr) {
+      dlclose(handle);
       throw GlError(soname + " has no " + name + " (Mesa 20 or newer is needed; Debian package "
                     "libosmesa6)");
+    }
   };
   resolve(lib.create_context_attribs, "OSMesaCreateContextAttribs");
   resolve(lib.destroy_context, "OSMesaDestroyContext");

@@ -137,7 +137,7 @@ void main() {
   vec2 half_viewport = 0.5 * u_viewport;
   v_color = a_color;
   vec4 c0 = biased_clip(a_from);
-  v_world = a_corner.x < 0.5 || a_disc > 0.5 ? a_from : a_to;
+  v_world = a_from;
   if (a_disc > 0.5) {
     // One pixel beyond the rim, so the fragment shader can fade the edge.
     v_offset_px = a_corner * (0.5 * a_size_px + 1.0);
@@ -155,8 +155,17 @@ void main() {
     gl_Position = vec4(0.0);
     return;
   }
-  if (d0 < 0.0) c0 = mix(c0, c1, d0 / (d0 - d1));
-  if (d1 < 0.0) c1 = mix(c1, c0, d1 / (d1 - d0));
+  // The world points move with the clip-space ends, so the clip plane's test stays exact.
+  vec3 w0 = a_from, w1 = a_to;
+  if (d0 < 0.0) {
+    c0 = mix(c0, c1, d0 / (d0 - d1));
+    w0 = mix(a_from, a_to, d0 / (d0 - d1));
+  }
+  if (d1 < 0.0) {
+    c1 = mix(c1, c0, d1 / (d1 - d0));
+    w1 = mix(a_to, a_from, d1 / (d1 - d0));
+  }
+  v_world = a_corner.x < 0.5 ? w0 : w1;
   vec2 along = c1.xy / c1.w * half_viewport - c0.xy / c0.w * half_viewport;
   float len = length(along);
   vec2 normal = len > 1e-4 ? vec2(-along.y, along.x) / len : vec2(0.0);

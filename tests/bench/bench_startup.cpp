@@ -66,8 +66,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: bench_startup [--runs N] SUTURA [OTHER_SUTURA]\n");
     return 2;
   }
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sutura_bench_startup";
-  std::filesystem::create_directories(dir);
+  std::string pattern = (std::filesystem::temp_directory_path() / "sutura_bench_startup_XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    std::fprintf(stderr, "bench_startup: cannot make a temporary directory\n");
+    return 2;
+  }
+  const std::filesystem::path dir = pattern;
   const std::string session = (dir / "tube.jsonl").string();
   std::ofstream(session) << "{\"format\": \"sutura-session\", \"version\": 3}\n"
                             "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, "

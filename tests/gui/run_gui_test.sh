@@ -17,6 +17,19 @@ for f in window.png gui_snapshot.png report.json recorded.jsonl; do
   [ -s "$out/$f" ] || { echo "gui test: $out/$f missing" >&2; exit 1; }
 done
 
+# SCRIPT's companion NAME.recorded_contains (optional): strings the recording must hold, one
+# per line (e.g. the snapshot's clip plane of gui.cut_open).
+expected="${script%.script.jsonl}.recorded_contains"
+if [ -e "$expected" ]; then
+  while IFS= read -r want; do
+    [ -z "$want" ] && continue
+    grep -qF -- "$want" "$out/recorded.jsonl" || {
+      echo "gui test: the recording does not contain $want" >&2
+      exit 1
+    }
+  done < "$expected"
+fi
+
 "$exe" replay "$out/recorded.jsonl" --out "$out/replayed" --quiet
 same_geometry "$out/report.json" "$out/replayed/report.json" || {
   echo "gui test: the replayed session does not reproduce the GUI's geometry" >&2

@@ -47,7 +47,7 @@ TEST(StageMachine, CancelReturnsToPlan) {
   EXPECT_THROW(m.simulation_cancelled(), std::logic_error);
 }
 
-TEST(StageMachine, EveryDisabledActionExplainsWhy) {
+TEST(StageMachine, EveryDisabledCommandExplainsWhy) {
   StageMachine m;
   for (int s = 0; s < 3; ++s) {
     int disabled = 0;  // every stage disables something (this loop is not vacuous)

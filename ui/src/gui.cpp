@@ -178,7 +178,13 @@ void end_labels(const GuiState& s) {
   if (s.stages.stage() != Stage::Plan || s.controller.busy()) return;
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   std::vector<std::array<float, 4>> placed;  // x0, y0, x1, y1 of the labels drawn so far
+  const std::optional<render::ClipPlane> clip = s.clip_plane();
   for (const auto& [where, name] : s.end_labels) {
+    if (clip) {  // no label for an end that Cut open has cut away
+      const auto& n = clip->normal;
+      const auto& p = clip->point;
+      if (n[0] * (where.x() - p[0]) + n[1] * (where.y() - p[1]) + n[2] * (where.z() - p[2]) > 0.0) continue;
+    }
     std::array<float, 2> px{};
     if (!s.camera.project(where, s.scene_width, s.view_height, px)) continue;
     ImVec2 at(s.view_left + px[0] + 10.0f, px[1] - 8.0f);

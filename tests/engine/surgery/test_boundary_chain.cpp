@@ -104,7 +104,9 @@ TEST(BoundaryChain, PointsNearTheEndsNameTheChain) {
     (void)find_boundary_chain(m, far);
     ADD_FAILURE() << "a point 5 mm from the boundary named a chain";
   } catch (const InvalidArgument& e) {
-    EXPECT_NE(std::string(e.what()).find("from"), std::string::npos) << e.what();
+    const std::string m = e.what();
+    EXPECT_NE(m.find("chain point 'from'"), std::string::npos) << m;
+    EXPECT_NE(m.find("mm from the nearest boundary vertex (limit 1.0"), std::string::npos) << m;
   }
   ChainSpec same = spec;
   same.to = spec.from;

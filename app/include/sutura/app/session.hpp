@@ -23,6 +23,7 @@
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/selection.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
+#include "sutura/engine/sim/unload.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
@@ -246,9 +247,10 @@ struct SolveOp {
 struct UnloadOp {
   std::string object;
   SolveOp solve;
-  int iterations = 20;
-  double shape_tolerance = 0.0;
-  int acceleration_depth = 5;  ///< engine::UnloadParams'; not a session field, pinned per version
+  /// The fixed-point iteration: max_iterations (`iterations`), tolerance (`shape_tolerance`) and
+  /// the pinned rest, from the format version's defaults (session_defaults.hpp); `solver` is
+  /// filled from `solve` by the replay.
+  engine::UnloadParams params;
 };
 
 /// Implicit dynamics of the named objects (all when empty).

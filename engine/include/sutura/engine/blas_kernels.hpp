@@ -8,7 +8,7 @@
 // factorisation is BLAS-3, so that fallback made one Newton iteration at 20k elements 780 ms
 // instead of 490 ms with the SkylakeX kernels (docs/performance.md). The kernels can only be
 // chosen through the environment variable OPENBLAS_CORETYPE before the library loads, hence a
-// restart of the program, which is the executable's business (app/src/main.cpp): the engine
+// restart of the program, which is the executable's business (app/blas_restart.hpp): the engine
 // only says which kernels would be better.
 //
 // With another BLAS, or an OpenBLAS that recognised the CPU, or OPENBLAS_CORETYPE already set by

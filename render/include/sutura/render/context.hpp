@@ -24,8 +24,9 @@ class GlContext {
 };
 
 /// Headless context (OSMesa, llvmpipe on CPU). The default framebuffer is a small dummy;
-/// all rendering goes to framebuffer objects. Throws GlError if a 3.3 core context cannot
-/// be created.
+/// all rendering goes to framebuffer objects. libOSMesa is loaded by the first call. Throws
+/// GlError if it cannot be loaded (the message names the Debian package) or a 3.3 core context
+/// cannot be created.
 std::unique_ptr<GlContext> create_offscreen_context();
 
 /// A GLFW window with a 3.3 core context. `visible = false` creates a hidden window.
