@@ -1,8 +1,8 @@
 #pragma once
 // OSMesa, loaded when the first off-screen context is made, not when the program starts.
 //
-// Why: libOSMesa pulls in LLVM (llvmpipe), whose relocations took most of the 0.1-0.2 s that
-// every `sutura` start cost before (a replay without snapshots never draws). dlopen defers it
+// Why: libOSMesa pulls in LLVM (llvmpipe), whose relocations dominate a start of the program
+// (docs/performance.md, Start-up), and a replay without snapshots never draws. dlopen defers it
 // to the first snapshot; a machine without the library can still replay, and a snapshot there
 // fails with a message that names the package. The symbols are resolved once, process-wide.
 #include <GL/osmesa.h>

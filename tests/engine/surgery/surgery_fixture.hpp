@@ -25,6 +25,16 @@ struct Body : SurfaceAttributes {
   }
 };
 
+// A vertex origin of an edit's maps, parents given as plain indices.
+inline VertexOrigin vertex_origin(VertexOriginKind kind, std::vector<int> parents,
+                                  std::vector<double> weights) {
+  VertexOrigin o;
+  o.kind = kind;
+  for (int p : parents) o.parents.emplace_back(p);
+  o.weights = std::move(weights);
+  return o;
+}
+
 // Incision parameters of the paper's prototype: snapped to mesh edges.
 inline IncisionParams snapped() {
   IncisionParams p;

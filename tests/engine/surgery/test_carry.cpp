@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "surgery_fixture.hpp"
+
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/shell/rest_state.hpp"
@@ -13,22 +15,16 @@
 namespace sutura::engine {
 namespace {
 
-VertexOrigin origin(VertexOriginKind kind, std::vector<int> parents, std::vector<double> weights) {
-  VertexOrigin o;
-  o.kind = kind;
-  for (int p : parents) o.parents.emplace_back(p);
-  o.weights = std::move(weights);
-  return o;
-}
+using testing::vertex_origin;
 
 // Old: 3 vertices, one face. New: the two old corners 0 and 1 copied, the midpoint of edge
 // 1-2 (interpolated), corner 2 merged with corner 0 (a suture); face 0 untouched, face 1 the
 // sub-face (0, 1, mid) of the old face, face 2 made by a remesh.
 EditMaps maps() {
   EditMaps m;
-  m.vertices = {origin(VertexOriginKind::Copy, {0}, {1.0}), origin(VertexOriginKind::Copy, {1}, {1.0}),
-                origin(VertexOriginKind::Interpolated, {1, 2}, {0.5, 0.5}),
-                origin(VertexOriginKind::Merged, {0, 2}, {0.5, 0.5})};
+  m.vertices = {vertex_origin(VertexOriginKind::Copy, {0}, {1.0}), vertex_origin(VertexOriginKind::Copy, {1}, {1.0}),
+                vertex_origin(VertexOriginKind::Interpolated, {1, 2}, {0.5, 0.5}),
+                vertex_origin(VertexOriginKind::Merged, {0, 2}, {0.5, 0.5})};
   FaceOrigin same;
   same.parent = FaceId(0);
   FaceOrigin sub = same;
@@ -94,7 +90,7 @@ TEST(Carry, FaceValuesConstraintsAndVerticesFollowTheirParents) {
   EXPECT_FALSE(c.is_fixed(0, 0));
 
   EditMaps between = maps();
-  between.vertices[2] = origin(VertexOriginKind::Interpolated, {0, 1}, {0.5, 0.5});
+  between.vertices[2] = vertex_origin(VertexOriginKind::Interpolated, {0, 1}, {0.5, 0.5});
   EXPECT_FALSE(carry_constraints(between, old).is_fixed(2, 0));  // fixed and free: free
   EXPECT_TRUE(carry_constraints(between, old).is_fixed(2, 2));   // uz fixed at both ends
 

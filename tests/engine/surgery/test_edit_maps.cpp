@@ -9,23 +9,19 @@
 
 #include <gtest/gtest.h>
 
+#include "surgery_fixture.hpp"
+
 namespace sutura::engine {
 namespace {
 
-VertexOrigin origin(VertexOriginKind kind, std::vector<int> parents, std::vector<double> weights) {
-  VertexOrigin o;
-  o.kind = kind;
-  for (int p : parents) o.parents.emplace_back(p);
-  o.weights = std::move(weights);
-  return o;
-}
+using testing::vertex_origin;
 
 // Three old vertices a, b, c -> a cut and a suture -> a split and a merge.
 EditMaps first_edit() {
   EditMaps m;
-  m.vertices = {origin(VertexOriginKind::Interpolated, {0, 1}, {0.25, 0.75}),  // v0 on edge ab
-                origin(VertexOriginKind::Copy, {2}, {1.0}),                     // v1 = c
-                origin(VertexOriginKind::Merged, {0, 1}, {0.5, 0.5})};          // v2 = a + b sewn
+  m.vertices = {vertex_origin(VertexOriginKind::Interpolated, {0, 1}, {0.25, 0.75}),  // v0 on edge ab
+                vertex_origin(VertexOriginKind::Copy, {2}, {1.0}),                     // v1 = c
+                vertex_origin(VertexOriginKind::Merged, {0, 1}, {0.5, 0.5})};          // v2 = a + b sewn
   FaceOrigin f;
   f.parent = FaceId(0);
   f.bary << 1, 0, 0, 0.5, 0.5, 0, 0, 0, 1;
@@ -35,9 +31,9 @@ EditMaps first_edit() {
 
 EditMaps second_edit() {
   EditMaps m;
-  m.vertices = {origin(VertexOriginKind::Interpolated, {0, 1}, {0.5, 0.5}),  // w0 on v0 v1
-                origin(VertexOriginKind::Merged, {1, 2}, {0.5, 0.5}),        // w1 = v1 + v2
-                origin(VertexOriginKind::Copy, {0}, {1.0})};                 // w2 = v0
+  m.vertices = {vertex_origin(VertexOriginKind::Interpolated, {0, 1}, {0.5, 0.5}),  // w0 on v0 v1
+                vertex_origin(VertexOriginKind::Merged, {1, 2}, {0.5, 0.5}),        // w1 = v1 + v2
+                vertex_origin(VertexOriginKind::Copy, {0}, {1.0})};                 // w2 = v0
   FaceOrigin f;
   f.parent = FaceId(0);
   f.kind = FaceOriginKind::Resampled;
