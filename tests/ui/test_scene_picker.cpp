@@ -2,6 +2,7 @@
 // fix click snaps to.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "../../ui/src/scene_picker.hpp"
@@ -84,4 +85,27 @@ TEST(ScenePicker, APlaneCutsAwayThePartOfTheRayOnItsNormalsSide) {
   const auto none = ui::uncut_part({engine::Vec3(30, 0, 10), engine::Vec3(1, 0, 0)}, facing_the_eye);
   EXPECT_GT(none[0], none[1]);
   EXPECT_FALSE(picker.pick({engine::Vec3(30, 0, 10), engine::Vec3(1, 0, 0)}, 0.0, none[0], none[1]));
+}
+
+TEST(ScenePicker, AClickNearACornerPicksIt) {
+  const engine::SurfaceMesh m =
+      engine::load_mesh(std::string(SUTURA_SOURCE_DIR) + "/tests/gui/two_strips.obj");
+  ui::ScenePicker picker;
+  picker.rebuild({&m});
+  // 0.45 mm from the boundary vertex (18, -4), 1.26 mm from the corner (18, -5), seen from 10 mm.
+  const engine::Ray ray{engine::Vec3(17.6, -3.8, 10), engine::Vec3(0, 0, -1)};
+  const auto plain = picker.pick(ray);
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(m.position(plain->boundary_vertex), engine::Vec3(18, -4, 0));
+  // A snap angle reaching 1.5 mm at 10 mm: the corner wins.
+  const auto snapped = picker.pick(ray, std::atan(0.15));
+  ASSERT_TRUE(snapped);
+  EXPECT_EQ(m.position(snapped->boundary_vertex), engine::Vec3(18, -5, 0));
+  EXPECT_EQ(snapped->boundary_loop, plain->boundary_loop);
+  // A reach of 1.0 mm does not get there: the nearest boundary vertex again.
+  EXPECT_EQ(m.position(picker.pick(ray, std::atan(0.10))->boundary_vertex), engine::Vec3(18, -4, 0));
+  // The middle of a straight edge is no corner: (18, 0) is taken only when it is the nearest.
+  const auto middle = picker.pick({engine::Vec3(17.6, 0.3, 10), engine::Vec3(0, 0, -1)}, std::atan(0.3));
+  ASSERT_TRUE(middle);
+  EXPECT_EQ(m.position(middle->boundary_vertex), engine::Vec3(18, 0, 0));
 }

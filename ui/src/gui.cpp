@@ -15,8 +15,8 @@
 #include "input_events.hpp"
 #include "panels.hpp"
 #include "script_player.hpp"
+#include "sutura/app/output_paths.hpp"
 #include "sutura/app/session.hpp"
-#include "sutura/engine/atomic_file.hpp"
 #include "sutura/render/renderer.hpp"
 #include "viewport.hpp"
 
@@ -127,7 +127,7 @@ void refresh_view(GuiState& s, float aspect) {
           s.end_labels.emplace_back(app::loop_centroid(o.mesh, loop), std::move(name));
   }
   if (!s.controller.busy() && s.element_check_revision != s.controller.revision()) {
-    s.element_check = check_elements(s.controller.workspace());
+    s.element_check = app::check_elements(s.controller.workspace());
     s.element_check_revision = s.controller.revision();
   }
   if (s.fit_requested && !s.view.current().empty()) {
@@ -455,7 +455,7 @@ int run_gui(const GuiOptions& options) {
       try {
         const auto png = render::encode_png(renderer.read_framebuffer(fb_width, fb_height));
         if (screenshot_to->has_parent_path()) fs::create_directories(screenshot_to->parent_path());
-        engine::write_file_atomically(*screenshot_to, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+        app::write_file_atomically(*screenshot_to, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
         s.info("Window saved to " + screenshot_to->string());
       } catch (const std::exception& e) {
         s.error(std::string("window screenshot: ") + e.what());

@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "element_check.hpp"
-#include "resect_preview.hpp"
-#include "op_builders.hpp"
+#include "sutura/app/element_check.hpp"
+#include "sutura/app/resect_preview.hpp"
+#include "sutura/app/op_builders.hpp"
 #include "scene_picker.hpp"
 #include "sutura/app/patch_preview.hpp"
 #include "sutura/app/section.hpp"
@@ -44,7 +44,7 @@ struct ResectDraft {
 
 /// Two boundary chains, each named by clicking its two ends (suture_preview.hpp).
 struct SutureDraft {
-  std::vector<engine::Vec3> clicks;  ///< in click order; suture_sides reads them
+  std::vector<engine::Vec3> clicks;  ///< in click order; app::suture_sides reads them
   std::array<bool, 2> long_way = {false, false};  ///< per side: the longer arc between its ends
   bool onto_b = false;  ///< join placement onto_b: side A is drawn onto side B (a flap)
   /// The same point clicked twice on a cut: from one lip round to the other (suture_sides),
@@ -211,7 +211,7 @@ struct GuiState {
   float message_height = 80.0f;       ///< pixels; the user drags its top edge higher
   /// Thin rest triangles of the workspace at revision element_check_revision (refreshed with
   /// the picker): a run is refused or warned about, and the view marks them.
-  ElementCheck element_check;
+  app::ElementCheck element_check;
   std::uint64_t element_check_revision = ~std::uint64_t(0);
   /// selected_centreline(): made at revision centreline_revision for object centreline_object.
   std::optional<engine::CentrelineTree> centreline;
@@ -226,7 +226,7 @@ struct GuiState {
   std::string patch_preview_key;
   std::uint64_t patch_preview_revision = 0;
   /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
-  ResectPreview resect_preview;
+  app::ResectPreview resect_preview;
   std::string resect_preview_key;
   bool fit_requested = true;
   /// Applied after the fit: the camera looks from this standard view (View menu, view bar).

@@ -109,7 +109,7 @@ void lumen_profile_controls(GuiState& s) {
   if (gated_button(s.widgets, "Measure lumen profile", gate) && obj) {
     const std::string name = "profile_" + std::to_string(++s.measure_count);
     const ActionOutcome r =
-        s.controller.run(lumen_profile_op(obj->name, name, centre(s.profile_from), centre(s.profile_to)));
+        s.controller.run(app::lumen_profile_op(obj->name, name, centre(s.profile_from), centre(s.profile_to)));
     if (r.ok) {
       s.last_profile = r.details;
       s.info("Lumen profile measured");
@@ -182,14 +182,14 @@ void inspect_section(GuiState& s) {
   if (gated_button(s.widgets, "Save snapshot", no_snapshot,
                    "The view as it is (camera, size, colour range) as a PNG in the output "
                    "directory, rendered off-screen like `sutura replay`.")) {
-    SnapshotView view;
+    app::SnapshotView view;
     view.camera = s.shown_camera();
     const float width = s.side_by_side ? 0.5f * s.view_width : s.view_width;
     view.width = std::clamp(int(width), 16, 8192);
     view.height = std::clamp(int(s.view_height), 16, 8192);
     if (const auto cmap = s.view.color_map()) view.range = std::array<float, 2>{cmap->min, cmap->max};
     view.clip = s.clip_plane();
-    s.pending_snapshot = snapshot_op(s.snapshot_file, view, s.side_by_side, session_field_name(s.field));
+    s.pending_snapshot = app::snapshot_op(s.snapshot_file, view, s.side_by_side, session_field_name(s.field));
     if (!fs::exists(s.controller.options().out_dir / s.snapshot_file)) save_pending_snapshot(s);
   }
   if (s.pending_snapshot && !ImGui::IsPopupOpen("Replace the snapshot?")) ImGui::OpenPopup("Replace the snapshot?");
@@ -209,7 +209,7 @@ void inspect_section(GuiState& s) {
   }
   ImGui::InputText("export file", s.export_file, sizeof s.export_file);
   if (gated_button(s.widgets, "Export mesh", s.why_not(Command::ExportMesh)) && s.selected())
-    s.perform(export_op(s.selected()->name, s.export_file),
+    s.perform(app::export_op(s.selected()->name, s.export_file),
               "Exported '" + s.selected()->name + "' to " +
                   (s.controller.options().out_dir / s.export_file).string());
   ImGui::Separator();

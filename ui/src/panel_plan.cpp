@@ -5,7 +5,7 @@
 
 #include "panels.hpp"
 #include "sutura/app/plan.hpp"
-#include "suture_preview.hpp"
+#include "sutura/app/suture_preview.hpp"
 
 namespace sutura::ui {
 
@@ -80,27 +80,27 @@ void open_controls(GuiState& s) {
     s.prepare_edge_length = std::max(0.0f, s.prepare_edge_length);
   }
   if (gated_button(s.widgets, "Open mesh", why))
-    s.perform(load_op(s.new_object, fs::path(s.open_path), s.controller.recorder().file(), s.open_prepare,
+    s.perform(app::load_op(s.new_object, fs::path(s.open_path), s.controller.recorder().file(), s.open_prepare,
                       static_cast<double>(s.prepare_edge_length)),
               (s.open_prepare ? "Prepared " : "Loaded ") + std::string(s.open_path));
   ImGui::SameLine();
   if (gated_button(s.widgets, "Tube", why, "A generated vessel segment (radius 4 mm, 30 mm long)."))
-    s.perform(generate_op(s.new_object, "tube", {{"radius", 4.0}, {"length", 30.0}}));
+    s.perform(app::generate_op(s.new_object, "tube", {{"radius", 4.0}, {"length", 30.0}}));
   ImGui::SameLine();
   if (gated_button(s.widgets, "Strip", why, "A flat strip 40 x 10 mm in the z = 0 plane."))
-    s.perform(generate_op(s.new_object, "strip"));
+    s.perform(app::generate_op(s.new_object, "strip"));
   // The bundled synthetic neonatal anatomy (assets/anatomy, `sutura generate arch`), one
   // click away: the aortic arch with its coarctation, and the pulmonary artery.
   const fs::path anatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
   if (gated_button(s.widgets, "Aortic arch", why,
                    "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces)."))
-    s.perform(load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file(), false, 0.0,
+    s.perform(app::load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file(), false, 0.0,
                       anatomy / "landmarks.json"),
               "Loaded the bundled aortic arch");
   ImGui::SameLine();
   if (gated_button(s.widgets, "Pulmonary artery", why,
                    "The bundled pulmonary artery beside the arch (coarse)."))
-    s.perform(load_op("pulmonary", anatomy / "pulmonary.ply", s.controller.recorder().file(), false, 0.0,
+    s.perform(app::load_op("pulmonary", anatomy / "pulmonary.ply", s.controller.recorder().file(), false, 0.0,
                       anatomy / "landmarks.json"),
               "Loaded the bundled pulmonary artery");
 }
@@ -150,7 +150,7 @@ void suture_controls(GuiState& s) {
                      "of an incision round to the other (a flap). Next: %s.",
                      kSteps[std::min<std::size_t>(s.suture.clicks.size(), 4)]);
   if (const auto* obj = s.selected()) {
-    const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
+    const app::SuturePreview p = app::preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
     for (const auto& line : p.lines) ImGui::TextWrapped("%s", line.c_str());
   }
   noted_checkbox(s.widgets, "Side A the long way round", &s.suture.long_way[0]);
@@ -215,13 +215,13 @@ void patch_controls(GuiState& s) {
   s.widgets.note("patch thickness [mm]");
   ImGui::TextWrapped("Click the two end points of the incision to patch (%zu of 2).",
                      s.patch.ends.size());
-  const json material = {{"youngs_modulus", as_typed(s.patch.youngs_modulus)},
-                         {"poisson_ratio", as_typed(s.patch.poisson_ratio)},
-                         {"thickness", as_typed(s.patch.thickness)}};
+  const json material = {{"youngs_modulus", app::as_typed(s.patch.youngs_modulus)},
+                         {"poisson_ratio", app::as_typed(s.patch.poisson_ratio)},
+                         {"thickness", app::as_typed(s.patch.thickness)}};
   std::optional<json> op;
   if (s.patch.ends.size() == 2 && s.selected())
-    op = patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0], s.patch.ends[1],
-                  as_typed(s.patch.width), material);
+    op = app::patch_op(s.selected()->name, kShapes[s.patch.shape], s.patch.ends[0], s.patch.ends[1],
+                  app::as_typed(s.patch.width), material);
   refresh_patch_preview(s, op);
   if (op && s.patch_preview_error.empty()) {
     ImGui::TextWrapped("The patch as cut, outlined in blue around the incision: %.1f mm wide, %.1f mm long, %.0f mm².",
@@ -257,7 +257,7 @@ void remesh_controls(GuiState& s) {
   if (gated_button(s.widgets, s.remesh.points.empty() ? "Remesh object" : "Remesh region",
                    s.why_not(Command::Remesh, "remesh")) &&
       s.selected()) {
-    if (s.perform(remesh_op(s.selected()->name, s.remesh.points, s.remesh.radius,
+    if (s.perform(app::remesh_op(s.selected()->name, s.remesh.points, s.remesh.radius,
                             s.remesh.target_edge_length, s.remesh.grading, s.remesh.iterations),
                   "Remeshed '" + s.selected()->name + "'"))
       s.remesh.points.clear();
@@ -345,7 +345,7 @@ void material_controls(GuiState& s) {
   number_field("thickness [mm]", &d.thickness, kMinThickness, kMaxThickness, 0.05f);
   s.widgets.note("thickness [mm]");
   // Only what was changed is recorded: the region keeps its other values exactly.
-  const auto edited = [](float now, float loaded) { return now != loaded ? std::optional<double>(as_typed(now)) : std::nullopt; };
+  const auto edited = [](float now, float loaded) { return now != loaded ? std::optional<double>(app::as_typed(now)) : std::nullopt; };
   const std::optional<double> e = edited(d.youngs_modulus, d.loaded_youngs_modulus),
                               nu = edited(d.poisson_ratio, d.loaded_poisson_ratio),
                               t = edited(d.thickness, d.loaded_thickness);
@@ -357,7 +357,7 @@ void material_controls(GuiState& s) {
                                  : "This patch's material; the wall and other patches keep theirs.")) {
     const std::string name = obj->name;
     const int region = d.region;
-    const ActionOutcome r = s.controller.run(material_op(obj->mesh, face_material, name, region, e, nu, t));
+    const ActionOutcome r = s.controller.run(app::material_op(obj->mesh, face_material, name, region, e, nu, t));
     if (!r.ok) {
       s.error(r.op + " failed: " + r.message);
       return;
@@ -396,7 +396,7 @@ void plan_section(GuiState& s) {
                                      "(it follows the boundary with the mesh on its left)."
                                    : "Click near a boundary loop (a vessel end) to fix it.");
       if (gated_button(s.widgets, "Hold every open end", s.why_not(Command::FixRegion, "fix")) && s.selected())
-        s.perform(fix_all_ends_op(s.selected()->name),
+        s.perform(app::fix_all_ends_op(s.selected()->name),
                   "Every open end of '" + s.selected()->name + "' held");
       break;
     case Tool::Patch: patch_controls(s); break;
@@ -426,7 +426,7 @@ void commit_incision(GuiState& s) {
     s.error("An incision needs at least two points on the selected object.");
     return;
   }
-  if (s.perform(incise_op(s.selected()->name, s.incision.points, s.incision.snap),
+  if (s.perform(app::incise_op(s.selected()->name, s.incision.points, s.incision.snap),
                 "Incision committed"))
     s.incision.points.clear();
 }
@@ -438,16 +438,16 @@ void commit_suture(GuiState& s) {
   }
   // Recorded in the boundary direction, so the session says exactly which arcs were joined.
   const auto& mesh = s.selected()->mesh;
-  const std::vector<ChainEnds> c = suture_sides(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
+  const std::vector<app::ChainEnds> c = app::suture_sides(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
   std::string done = "Suture joined";
-  const SuturePreview p = preview_suture(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
+  const app::SuturePreview p = app::preview_suture(mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
   if (p.chains.size() == 2) {
     char buf[160];
     std::snprintf(buf, sizeof buf, " (side A %zu vertices, %.1f mm; side B %zu vertices, %.1f mm)",
                   p.chains[0].size(), p.lengths[0], p.chains[1].size(), p.lengths[1]);
     done += buf;
   }
-  if (s.perform(join_op(s.selected()->name, c[0], c[1], s.suture.onto_b), done)) {
+  if (s.perform(app::join_op(s.selected()->name, c[0], c[1], s.suture.onto_b), done)) {
     s.suture.clicks.clear();
     s.suture.long_way = {false, false};
   }

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "panels.hpp"
-#include "resect_preview.hpp"
+#include "sutura/app/resect_preview.hpp"
 
 namespace sutura::ui {
 
@@ -88,7 +88,7 @@ void refresh_section_plane(GuiState& s) {
     return;
   }
   try {
-    const SectionCut cut = cut_at(obj->mesh, *tree, *s.plane_origin);
+    const app::SectionCut cut = app::cut_at(obj->mesh, *tree, *s.plane_origin);
     s.section_plane = engine::Plane{cut.plane.origin, cut.plane.normal};
     s.section_extent = 1.3 * cut.wall_distance;
   } catch (const std::exception& e) {
@@ -192,7 +192,7 @@ void cross_section_controls(GuiState& s) {
   if (gated_button(s.widgets, "Measure cross-section", gate) && s.selected()) {
     const engine::Plane plane = *s.section_plane;
     const std::string name = "section_" + std::to_string(++s.measure_count);
-    const ActionOutcome r = s.controller.run(measure_op(s.selected()->name, name, plane.origin, plane.normal));
+    const ActionOutcome r = s.controller.run(app::measure_op(s.selected()->name, name, plane.origin, plane.normal));
     if (r.ok) {
       s.last_measure = r.details;
       s.last_section.reset();

@@ -11,7 +11,7 @@ namespace {
 // with the surgery ops), or nullopt.
 std::optional<std::string> relax_unsupported() {
   try {
-    app::parse_action(simulate_op(1, 1e-3, 1), "probe.jsonl", 1);
+    app::parse_action(app::simulate_op(1, 1e-3, 1), "probe.jsonl", 1);
     return std::nullopt;
   } catch (const std::exception&) {
     return "Not available in this build: the simulate op has no 'relax' field yet.";
@@ -90,8 +90,8 @@ void simulate_section(GuiState& s) {
       s.error("Run refused. " + *refusal);
     } else if (std::vector<nlohmann::json> ops =
                    relax > 0 && s.simulation.staged_dynamics
-                       ? flap_relaxation_ops(s.simulation.collapse_barrier)
-                       : std::vector<nlohmann::json>{simulate_op(s.simulation.steps, s.simulation.dt,
+                       ? app::flap_relaxation_ops(s.simulation.collapse_barrier)
+                       : std::vector<nlohmann::json>{app::simulate_op(s.simulation.steps, s.simulation.dt,
                                                                  relax, s.simulation.collapse_barrier)};
                s.start_run(ops.front(), 1, int(ops.size()), why)) {
       s.queued_runs.assign(ops.begin() + 1, ops.end());

@@ -20,7 +20,7 @@ void refresh_preview(GuiState& s, const app::SceneObject& obj, const engine::Cen
   std::snprintf(buf, sizeof buf, "/%a", double(s.resect.reach));
   key += buf;
   if (key == s.resect_preview_key) return;
-  s.resect_preview = preview_resection(obj.mesh, tree, s.resect.clicks, s.resect.reach);
+  s.resect_preview = app::preview_resection(obj.mesh, tree, s.resect.clicks, s.resect.reach);
   s.resect_preview_key = key;
 }
 
@@ -36,7 +36,7 @@ void resect_controls(GuiState& s) {
                                        s.centreline_error.c_str());
   if (tree) {
     refresh_preview(s, *obj, *tree);
-    const ResectPreview& p = s.resect_preview;
+    const app::ResectPreview& p = s.resect_preview;
     for (std::size_t k = 0; k < p.planes.size(); ++k) {
       const auto& o = p.planes[k].origin;
       ImGui::Text("Cut %zu at (%.1f, %.1f, %.1f) mm, lumen %.1f mm across", k + 1, o.x(), o.y(), o.z(),
@@ -74,11 +74,11 @@ void commit_resection(GuiState& s) {
     s.error("A resection needs two cuts that the preview accepts.");
     return;
   }
-  const ResectPreview& p = s.resect_preview;
+  const app::ResectPreview& p = s.resect_preview;
   char done[200];
   std::snprintf(done, sizeof done, "Resected %zu faces (%.1f mm2) of '%s'%s", p.removed_faces, p.removed_area,
                 obj->name.c_str(), s.resect.anastomosis ? ", the ends sewn together" : "");
-  if (s.perform(resect_op(obj->name, p.planes, p.reach, s.resect.anastomosis), done)) s.resect.clicks.clear();
+  if (s.perform(app::resect_op(obj->name, p.planes, p.reach, s.resect.anastomosis), done)) s.resect.clicks.clear();
 }
 
 }  // namespace sutura::ui

@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "op_builders.hpp"
-#include "sutura/engine/atomic_file.hpp"
+#include "sutura/app/op_builders.hpp"
+#include "sutura/app/output_paths.hpp"
 
 namespace sutura::ui {
 
@@ -65,7 +65,7 @@ std::string rebased(const std::string& content, const fs::path& from, const fs::
         nlohmann::json j = nlohmann::json::parse(line);
         if (j.is_object() && j.value("op", "") == "load" && j.contains("file") && j["file"].is_string() &&
             fs::path(j["file"].get<std::string>()).is_relative()) {
-          j["file"] = path_from(from_dir / j["file"].get<std::string>(), to).string();
+          j["file"] = app::path_from(from_dir / j["file"].get<std::string>(), to).string();
           line = j.dump() + (end == std::string::npos ? "" : "\n");
         }
       } catch (const nlohmann::json::exception&) {
@@ -170,7 +170,7 @@ void SessionRecorder::save_as(const fs::path& target) const {
   if (!in) throw std::runtime_error("cannot save the session as " + target.string() + ": the recording cannot be read");
   try {
     // A reader never sees half a file.
-    engine::write_file_atomically(target, rebased(text.str(), file_, target));
+    app::write_file_atomically(target, rebased(text.str(), file_, target));
   } catch (const std::exception& e) {
     throw std::runtime_error("cannot save the session as " + target.string() + ": " + e.what());
   }

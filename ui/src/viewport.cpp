@@ -3,8 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include "panels.hpp"
-#include "suture_preview.hpp"
-#include "sutura/engine/surgery/boundary_chain.hpp"
+#include "sutura/app/suture_preview.hpp"
 
 namespace sutura::ui {
 
@@ -18,16 +17,12 @@ render::Point3 point(const engine::Vec3& p) { return {float(p.x()), float(p.y())
 
 // Fixes the boundary run between the two clicks of the fix draft.
 void fix_run(GuiState& s, const app::SceneObject& obj) {
-  engine::ChainSpec spec;
-  spec.from = s.fix.clicks[0];
-  spec.to = s.fix.clicks[1];
+  const std::array<engine::Vec3, 2> ends{s.fix.clicks[0], s.fix.clicks[1]};
   s.fix.clicks.clear();
   try {
-    const engine::BoundaryChain chain = engine::find_boundary_chain(obj.mesh, spec);
-    std::vector<int> ids;
-    for (auto v : chain.vertices) ids.push_back(v.value);
-    s.perform(fix_vertices_op(obj.name, ids, s.has_op("fix")),
-              "Fixed " + std::to_string(ids.size()) + " boundary vertices of '" + obj.name + "'");
+    const nlohmann::json op = app::fix_run_op(obj.mesh, obj.name, ends[0], ends[1], s.has_op("fix"));
+    const std::size_t n = op.at("vertices").size();
+    s.perform(op, "Fixed " + std::to_string(n) + " boundary vertices of '" + obj.name + "'");
   } catch (const std::exception& e) {
     s.error(std::string("Fix ends: ") + e.what());
   }
@@ -82,7 +77,7 @@ void click(GuiState& s, double snap_angle) {
       if (!s.fix.run) {
       {
         const std::string end = app::end_name(*obj, obj->mesh.boundary_loops()[std::size_t(h.boundary_loop)]);
-        s.perform(fix_loop_op(obj->name, h.boundary_loop, s.has_op("fix")),
+        s.perform(app::fix_loop_op(obj->name, h.boundary_loop, s.has_op("fix")),
                   "Fixed boundary loop " + std::to_string(h.boundary_loop) + " of '" + obj->name + "'" +
                       (end.empty() ? "" : " (" + end + ")"));
       }
@@ -161,7 +156,7 @@ Overlays viewport_overlays(const GuiState& s) {
       markers(s.incision.points, {0.85f, 0.05f, 0.05f}, 9.0f);
     }
     if (s.tool == Tool::Suture && obj) {
-      const SuturePreview p = preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
+      const app::SuturePreview p = app::preview_suture(obj->mesh, s.suture.clicks, s.suture.long_way, s.suture.lip_to_lip);
       const render::Color colors[2] = {{0.05f, 0.55f, 0.15f}, {0.55f, 0.1f, 0.7f}};
       for (std::size_t i = 0; i < p.chains.size(); ++i) line(p.chains[i], colors[i], 5.0f);
       for (const auto& ends : p.meeting_ends) line({ends[0], ends[1]}, {0.35f, 0.35f, 0.35f}, 2.5f);
@@ -177,7 +172,7 @@ Overlays viewport_overlays(const GuiState& s) {
     if (s.tool == Tool::Remesh) markers(s.remesh.points, {0.6f, 0.2f, 0.8f}, 10.0f);
     if (s.tool == Tool::Resect && !s.resect.clicks.empty()) {
       // The preview is brought up to date by the panel, drawn before the view.
-      const ResectPreview& p = s.resect_preview;
+      const app::ResectPreview& p = s.resect_preview;
       for (std::size_t k = 0; k < p.planes.size(); ++k) {
         const engine::Vec3 n = p.planes[k].normal.normalized();
         const engine::Vec3 u = n.unitOrthogonal(), v = n.cross(u);

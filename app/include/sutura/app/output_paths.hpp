@@ -5,7 +5,13 @@
 #include <filesystem>
 #include <string>
 
+#include "sutura/engine/atomic_file.hpp"
+
 namespace sutura::app {
+
+/// Every file the session layer and the window write (outputs, recordings, screenshots) is
+/// written whole or not at all: a temporary beside the target, then a rename.
+using engine::write_file_atomically;
 
 /// Returns out_dir / relative after checking that `relative` is non-empty, not absolute,
 /// has no `..` component and — once its existing parents are resolved through symlinks —

@@ -1,10 +1,12 @@
-#include "op_builders.hpp"
+#include "sutura/app/op_builders.hpp"
 
 #include <charconv>
 #include <cstdlib>
 #include <stdexcept>
 
-namespace sutura::ui {
+#include "sutura/engine/surgery/boundary_chain.hpp"
+
+namespace sutura::app {
 
 using nlohmann::json;
 
@@ -78,6 +80,16 @@ json fix_all_ends_op(const std::string& object) {
 json fix_vertices_op(const std::string& object, const std::vector<int>& vertices, bool have_fix_op) {
   return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object}, {"vertices", vertices},
           {"dofs", json::array({"all"})}};
+}
+
+json fix_run_op(const engine::SurfaceMesh& mesh, const std::string& object, const engine::Vec3& from,
+                const engine::Vec3& to, bool have_fix_op) {
+  engine::ChainSpec spec;
+  spec.from = from;
+  spec.to = to;
+  std::vector<int> ids;
+  for (auto v : engine::find_boundary_chain(mesh, spec).vertices) ids.push_back(v.value);
+  return fix_vertices_op(object, ids, have_fix_op);
 }
 
 json incise_op(const std::string& object, const std::vector<engine::Vec3>& points, bool snap) {
@@ -197,4 +209,4 @@ json export_op(const std::string& object, const std::string& file) {
   return {{"op", "export"}, {"object", object}, {"file", file}};
 }
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

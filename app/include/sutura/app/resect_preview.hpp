@@ -12,7 +12,7 @@
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/resect.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 /// A cut across the vessel placed by a click on its wall.
 struct SectionCut {
@@ -49,4 +49,4 @@ struct ResectPreview {
 ResectPreview preview_resection(const engine::SurfaceMesh& mesh, const engine::CentrelineTree& tree,
                                 const std::vector<engine::Vec3>& clicks, double reach);
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

@@ -1,16 +1,15 @@
 // The suture tool's reading of clicks: each side's two ends in either order, the shorter arc
 // between them (or the long way round), side B never on side A's arc, recorded in the
 // boundary direction; the same point twice on a cut (lip round to lip, a flap) or on an open
-// end (its loop); and a click near a boundary corner picks the corner.
+// end (its loop); (a click near a boundary corner picking the corner: test_scene_picker.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 
-#include "../../ui/src/op_builders.hpp"
-#include "../../ui/src/scene_picker.hpp"
-#include "../../ui/src/suture_preview.hpp"
+#include "sutura/app/op_builders.hpp"
+#include "sutura/app/suture_preview.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
@@ -26,7 +25,7 @@ engine::SurfaceMesh two_strips() {
 }
 
 // As the join op resolves a recorded side.
-engine::BoundaryChain chain(const engine::SurfaceMesh& m, const ui::ChainEnds& side) {
+engine::BoundaryChain chain(const engine::SurfaceMesh& m, const app::ChainEnds& side) {
   engine::ChainSpec s;
   s.from = side.from;
   s.to = side.to;
@@ -35,7 +34,7 @@ engine::BoundaryChain chain(const engine::SurfaceMesh& m, const ui::ChainEnds& s
   return engine::find_boundary_chain(m, s);
 }
 
-std::vector<Vec3> ends_of(const std::vector<ui::ChainEnds>& sides) {
+std::vector<Vec3> ends_of(const std::vector<app::ChainEnds>& sides) {
   std::vector<Vec3> out;
   for (const auto& s : sides) {
     out.push_back(s.from);
@@ -51,13 +50,13 @@ TEST(SuturePreview, BothSidesClickedTheSameWayAreOrientedForTheJoin) {
   // Facing edges of the strips (x = 18 and x = 22), both clicked from y = -5 to y = 5. The left
   // strip's boundary runs up its right edge, the right strip's down its left edge.
   const std::vector<Vec3> clicks = {{18, -5, 0}, {18, 5, 0}, {22, -5, 0}, {22, 5, 0}};
-  const auto oriented = ends_of(ui::suture_sides(m, clicks));
+  const auto oriented = ends_of(app::suture_sides(m, clicks));
   ASSERT_EQ(oriented.size(), 4u);
   EXPECT_EQ(oriented[0], clicks[0]);
   EXPECT_EQ(oriented[1], clicks[1]);
   EXPECT_EQ(oriented[2], clicks[3]);  // side B swapped: as clicked it is the long way round
   EXPECT_EQ(oriented[3], clicks[2]);
-  const ui::SuturePreview p = ui::preview_suture(m, clicks);
+  const app::SuturePreview p = app::preview_suture(m, clicks);
   ASSERT_EQ(p.chains.size(), 2u);
   EXPECT_EQ(p.chains[0].size(), 11u);
   EXPECT_EQ(p.chains[1].size(), 11u);
@@ -68,22 +67,22 @@ TEST(SuturePreview, BothSidesClickedTheSameWayAreOrientedForTheJoin) {
   EXPECT_EQ(p.meeting_ends[1][0], Vec3(18, 5, 0));
   EXPECT_EQ(p.meeting_ends[1][1], Vec3(22, 5, 0));
   // Clicking side A the other way gives the same join.
-  const auto reversed = ends_of(ui::suture_sides(m, {clicks[1], clicks[0], clicks[2], clicks[3]}));
+  const auto reversed = ends_of(app::suture_sides(m, {clicks[1], clicks[0], clicks[2], clicks[3]}));
   EXPECT_EQ(reversed, oriented);
-  for (const auto& side : ui::suture_sides(m, clicks)) EXPECT_FALSE(side.via);  // the ends suffice
+  for (const auto& side : app::suture_sides(m, clicks)) EXPECT_FALSE(side.via);  // the ends suffice
 }
 
 TEST(SuturePreview, TheLongWayRoundIsTakenOnlyWhenAskedFor) {
   const engine::SurfaceMesh m = two_strips();
   const std::vector<Vec3> a = {{18, -5, 0}, {18, 5, 0}};
-  const auto shorter = ui::suture_sides(m, a);
+  const auto shorter = app::suture_sides(m, a);
   ASSERT_EQ(shorter.size(), 1u);
   EXPECT_NEAR(engine::chain_length(m, chain(m, shorter[0])), 10.0, 1e-12);
-  const auto longer = ui::suture_sides(m, a, {true, false});
+  const auto longer = app::suture_sides(m, a, {true, false});
   ASSERT_EQ(longer.size(), 1u);
   EXPECT_NEAR(engine::chain_length(m, chain(m, longer[0])), 46.0, 1e-12);
   // One click so far: no side yet.
-  EXPECT_TRUE(ui::suture_sides(m, {a[0]}).empty());
+  EXPECT_TRUE(app::suture_sides(m, {a[0]}).empty());
 }
 
 TEST(SuturePreview, ClickingBothLipsFromTheSameEndGivesTheTwoLips) {
@@ -92,7 +91,7 @@ TEST(SuturePreview, ClickingBothLipsFromTheSameEndGivesTheTwoLips) {
   const engine::SurfaceMesh& m = cut.mesh;
   const Vec3 first = m.position(cut.left.front()), last = m.position(cut.left.back());
   // Both sides clicked at the same two ends (the slit's tips), in the same order.
-  const auto sides = ui::suture_sides(m, {first, last, first, last});
+  const auto sides = app::suture_sides(m, {first, last, first, last});
   ASSERT_EQ(sides.size(), 2u);
   const engine::BoundaryChain a = chain(m, sides[0]);
   const engine::BoundaryChain b = chain(m, sides[1]);
@@ -103,31 +102,9 @@ TEST(SuturePreview, ClickingBothLipsFromTheSameEndGivesTheTwoLips) {
   EXPECT_NE(as_set(a.vertices), as_set(b.vertices));
   EXPECT_TRUE((as_set(a.vertices) == left && as_set(b.vertices) == right) ||
               (as_set(a.vertices) == right && as_set(b.vertices) == left));
-  const ui::SuturePreview p = ui::preview_suture(m, {first, last, first, last});
+  const app::SuturePreview p = app::preview_suture(m, {first, last, first, last});
   ASSERT_EQ(p.meeting_ends.size(), 2u);
   EXPECT_EQ(p.meeting_ends[0][0], p.meeting_ends[0][1]);  // a slit: its ends are shared
-}
-
-TEST(ScenePicker, AClickNearACornerPicksIt) {
-  const engine::SurfaceMesh m = two_strips();
-  ui::ScenePicker picker;
-  picker.rebuild({&m});
-  // 0.45 mm from the boundary vertex (18, -4), 1.26 mm from the corner (18, -5), seen from 10 mm.
-  const engine::Ray ray{Vec3(17.6, -3.8, 10), Vec3(0, 0, -1)};
-  const auto plain = picker.pick(ray);
-  ASSERT_TRUE(plain);
-  EXPECT_EQ(m.position(plain->boundary_vertex), Vec3(18, -4, 0));
-  // A snap angle reaching 1.5 mm at 10 mm: the corner wins.
-  const auto snapped = picker.pick(ray, std::atan(0.15));
-  ASSERT_TRUE(snapped);
-  EXPECT_EQ(m.position(snapped->boundary_vertex), Vec3(18, -5, 0));
-  EXPECT_EQ(snapped->boundary_loop, plain->boundary_loop);
-  // A reach of 1.0 mm does not get there: the nearest boundary vertex again.
-  EXPECT_EQ(m.position(picker.pick(ray, std::atan(0.10))->boundary_vertex), Vec3(18, -4, 0));
-  // The middle of a straight edge is no corner: (18, 0) is taken only when it is the nearest.
-  const auto middle = picker.pick({Vec3(17.6, 0.3, 10), Vec3(0, 0, -1)}, std::atan(0.3));
-  ASSERT_TRUE(middle);
-  EXPECT_EQ(m.position(middle->boundary_vertex), Vec3(18, 0, 0));
 }
 
 TEST(SuturePreview, TheSameVertexTwiceIsItsWholeLoop) {
@@ -138,11 +115,11 @@ TEST(SuturePreview, TheSameVertexTwiceIsItsWholeLoop) {
   const Vec3 bottom = m.position(m.boundary_loops()[0][3]);
   const Vec3 top = m.position(m.boundary_loops()[1][5]);
   const std::vector<Vec3> clicks = {bottom, bottom, top, top};
-  const auto sides = ui::suture_sides(m, clicks);
+  const auto sides = app::suture_sides(m, clicks);
   ASSERT_EQ(sides.size(), 2u);
   EXPECT_TRUE(sides[0].loop() && sides[1].loop());
   EXPECT_EQ(ends_of(sides), clicks);  // loops are not reordered
-  const ui::SuturePreview p = ui::preview_suture(m, clicks);
+  const app::SuturePreview p = app::preview_suture(m, clicks);
   ASSERT_EQ(p.chains.size(), 2u);
   EXPECT_EQ(p.chains[0].size(), m.boundary_loops()[0].size());
   EXPECT_EQ(p.chains[1].size(), m.boundary_loops()[1].size());
@@ -154,10 +131,10 @@ TEST(SuturePreview, TheSameVertexTwiceIsItsWholeLoop) {
   EXPECT_EQ(p.meeting_ends[0][0], bottom);
   EXPECT_EQ(p.meeting_ends[0][1], top);
   // Recorded as loops.
-  const nlohmann::json op = ui::join_op("a", {bottom, bottom, std::nullopt}, {top, top, std::nullopt}, false);
+  const nlohmann::json op = app::join_op("a", {bottom, bottom, std::nullopt}, {top, top, std::nullopt}, false);
   EXPECT_EQ(op["chains"][0], nlohmann::json({{"loop", {bottom.x(), bottom.y(), bottom.z()}}}));
   EXPECT_EQ(op["chains"][1], nlohmann::json({{"loop", {top.x(), top.y(), top.z()}}}));
-  const nlohmann::json open = ui::join_op("a", {bottom, top, std::nullopt}, {top, bottom, std::nullopt}, false);
+  const nlohmann::json open = app::join_op("a", {bottom, top, std::nullopt}, {top, bottom, std::nullopt}, false);
   EXPECT_TRUE(open["chains"][0].contains("from"));
 }
 
@@ -183,11 +160,11 @@ TEST(SuturePreview, TheSamePointTwiceOnACutGoesFromLipToLip) {
   const Vec3 corner = m.position(left);
 
   // Without lip_to_lip the same point twice is the whole loop there.
-  const auto loops = ui::suture_sides(m, {corner, corner});
+  const auto loops = app::suture_sides(m, {corner, corner});
   ASSERT_EQ(loops.size(), 1u);
   EXPECT_TRUE(loops[0].loop());
 
-  const auto sides = ui::suture_sides(m, {corner, corner, corner, corner}, {false, false}, true);
+  const auto sides = app::suture_sides(m, {corner, corner, corner, corner}, {false, false}, true);
   ASSERT_EQ(sides.size(), 2u);
   for (const auto& side : sides) {
     EXPECT_FALSE(side.loop());
@@ -222,11 +199,11 @@ TEST(SuturePreview, TheSamePointTwiceOnACutGoesFromLipToLip) {
   EXPECT_NEAR(tip + flap, engine::chain_length(m, engine::find_boundary_chain(m, whole)), 1e-9);
 
   // The long way round swaps them; the preview shows what the join will resolve.
-  const auto swapped = ui::suture_sides(m, {corner, corner, corner, corner}, {true, false}, true);
+  const auto swapped = app::suture_sides(m, {corner, corner, corner, corner}, {true, false}, true);
   ASSERT_EQ(swapped.size(), 2u);
   EXPECT_EQ(chain(m, swapped[0]).vertices, b.vertices);
   EXPECT_EQ(chain(m, swapped[1]).vertices, a.vertices);
-  const ui::SuturePreview p = ui::preview_suture(m, {corner, corner, corner, corner}, {false, false}, true);
+  const app::SuturePreview p = app::preview_suture(m, {corner, corner, corner, corner}, {false, false}, true);
   ASSERT_EQ(p.chains.size(), 2u);
   EXPECT_NEAR(p.lengths[0], tip, 1e-12);
   EXPECT_NEAR(p.lengths[1], flap, 1e-12);
@@ -236,7 +213,7 @@ TEST(SuturePreview, TheSamePointTwiceOnACutGoesFromLipToLip) {
   for (const auto& line : p.lines) warned = warned || line.find("times as long") != std::string::npos;
   EXPECT_TRUE(warned);
 
-  const nlohmann::json op = ui::join_op("a", sides[0], sides[1], true);
-  EXPECT_EQ(op["chains"][0]["via"], ui::point_json(*sides[0].via));
+  const nlohmann::json op = app::join_op("a", sides[0], sides[1], true);
+  EXPECT_EQ(op["chains"][0]["via"], app::point_json(*sides[0].via));
   EXPECT_EQ(op["placement"], "onto_b");
 }

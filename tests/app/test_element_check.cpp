@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../../ui/src/element_check.hpp"
+#include "sutura/app/element_check.hpp"
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/surgery/remesh.hpp"
 
@@ -34,8 +34,8 @@ TEST(ElementCheck, ThinRestTrianglesRefuseOrWarn) {
   app::Workspace w;
   w.add("strip", engine::make_strip({}));
   w.add("other", engine::make_strip({}));
-  EXPECT_FALSE(ui::check_elements(w).refusal());
-  EXPECT_FALSE(ui::check_elements(w).warning());
+  EXPECT_FALSE(app::check_elements(w).refusal());
+  EXPECT_FALSE(app::check_elements(w).warning());
 
   app::SceneObject& o = *w.edit("strip");
   thin(o, 7, 5.0);   // warned
@@ -44,7 +44,7 @@ TEST(ElementCheck, ThinRestTrianglesRefuseOrWarn) {
   const auto& X = o.sim.rest.elements[12].X;
   ASSERT_NEAR(engine::smallest_angle_deg(X[0], X[1], X[2]), 0.5, 1e-9);
 
-  const ui::ElementCheck c = ui::check_elements(w);
+  const app::ElementCheck c = app::check_elements(w);
   ASSERT_EQ(c.refused.size(), 1u);
   EXPECT_EQ(c.refused[0].object, "strip");
   EXPECT_EQ(c.refused[0].count, 2u);
@@ -73,10 +73,10 @@ TEST(ElementCheck, MarkersAreBoundedAndKeepTheSmallest) {
   const int faces = int(o.mesh.num_faces());
   for (int f = 0; f < faces; ++f) thin(o, f, 2.0);
   thin(o, faces - 1, 1.0);
-  const ui::ElementCheck c = ui::check_elements(w);
+  const app::ElementCheck c = app::check_elements(w);
   ASSERT_EQ(c.refused.size(), 1u);
   EXPECT_EQ(c.refused[0].count, std::size_t(faces));
-  EXPECT_EQ(c.refused[0].where.size(), ui::ElementCheck::kMaxMarkers);
+  EXPECT_EQ(c.refused[0].where.size(), app::ElementCheck::kMaxMarkers);
   EXPECT_EQ(c.refused[0].where[0], centroid(o, faces - 1));
   EXPECT_NEAR(c.refused[0].smallest_deg, 1.0, 1e-9);
 }

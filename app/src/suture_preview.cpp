@@ -1,4 +1,4 @@
-#include "suture_preview.hpp"
+#include "sutura/app/suture_preview.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include "sutura/engine/surgery/boundary_chain.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 namespace {
 
@@ -198,4 +198,4 @@ SuturePreview preview_suture(const engine::SurfaceMesh& mesh, const std::vector<
   return p;
 }
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

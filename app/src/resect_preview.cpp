@@ -1,4 +1,4 @@
-#include "resect_preview.hpp"
+#include "sutura/app/resect_preview.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 namespace {
 
@@ -118,4 +118,4 @@ ResectPreview preview_resection(const engine::SurfaceMesh& mesh, const engine::C
   return out;
 }
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

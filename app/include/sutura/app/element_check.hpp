@@ -9,7 +9,7 @@
 
 #include "sutura/app/workspace.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 struct ThinElements {
   std::string object;
@@ -31,6 +31,6 @@ struct ElementCheck {
 };
 
 /// Checks every object's rest triangles. O(total faces).
-ElementCheck check_elements(const app::Workspace& workspace);
+ElementCheck check_elements(const Workspace& workspace);
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

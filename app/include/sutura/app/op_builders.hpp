@@ -13,7 +13,7 @@
 #include "sutura/engine/surgery/resect.hpp"
 #include "sutura/render/camera.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 nlohmann::json point_json(const engine::Vec3& p);
 /// The value of a float field as the shortest decimal that reads back as that float (0.45f
@@ -50,6 +50,11 @@ nlohmann::json fix_all_ends_op(const std::string& object);
 /// Fixes every DOF of the given vertices (a boundary run picked in the view), likewise.
 nlohmann::json fix_vertices_op(const std::string& object, const std::vector<int>& vertices,
                                bool have_fix_op);
+/// Fixes every DOF of the boundary run from `from` to `to` (two clicks in the view; the run
+/// the join op would resolve between them: nearest boundary vertices, boundary direction), as
+/// fix_vertices_op. Throws engine::InvalidArgument when no run joins them.
+nlohmann::json fix_run_op(const engine::SurfaceMesh& mesh, const std::string& object, const engine::Vec3& from,
+                          const engine::Vec3& to, bool have_fix_op);
 nlohmann::json incise_op(const std::string& object, const std::vector<engine::Vec3>& points,
                          bool snap);
 /// One side of a suture as the join op resolves it: the arc from `from` to `to` in the
@@ -103,4 +108,4 @@ nlohmann::json snapshot_op(const std::string& file, const SnapshotView& view, bo
                            const std::string& field);
 nlohmann::json export_op(const std::string& object, const std::string& file);
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

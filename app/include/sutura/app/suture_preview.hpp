@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "op_builders.hpp"
+#include "sutura/app/op_builders.hpp"
 #include "sutura/engine/mesh.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 /// The complete sides among `clicks` (click order: A end, A end, B end, B end), as the join
 /// op will record them: ends in the boundary direction, and `via` where the ends alone would
@@ -46,4 +46,4 @@ struct SuturePreview {
 SuturePreview preview_suture(const engine::SurfaceMesh& mesh, const std::vector<engine::Vec3>& clicks,
                              std::array<bool, 2> long_way = {false, false}, bool lip_to_lip = false);
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

@@ -1,11 +1,11 @@
-#include "element_check.hpp"
+#include "sutura/app/element_check.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "sutura/engine/surgery/remesh.hpp"
 
-namespace sutura::ui {
+namespace sutura::app {
 
 namespace {
 
@@ -38,9 +38,9 @@ std::optional<std::string> ElementCheck::warning() const {
   return "Thin elements: " + list(warned) + ". The run may fail to relax them (orange dots).";
 }
 
-ElementCheck check_elements(const app::Workspace& workspace) {
+ElementCheck check_elements(const Workspace& workspace) {
   ElementCheck check;
-  for (const app::SceneObject& o : workspace.objects()) {
+  for (const SceneObject& o : workspace.objects()) {
     ThinElements refused, warned;
     refused.object = warned.object = o.name;
     refused.smallest_deg = warned.smallest_deg = 180.0;
@@ -71,4 +71,4 @@ ElementCheck check_elements(const app::Workspace& workspace) {
   return check;
 }
 
-}  // namespace sutura::ui
+}  // namespace sutura::app

@@ -6,12 +6,12 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "../../ui/src/op_builders.hpp"
+#include "sutura/app/op_builders.hpp"
 #include "sutura/app/session.hpp"
 #include "sutura/engine/generators.hpp"
 
 namespace fs = std::filesystem;
-using namespace sutura::ui;
+using namespace sutura::app;
 
 TEST(OpBuilders, ALoadedMeshBesideTheRecordingIsNamedRelativeToIt) {
   const fs::path dir = fs::temp_directory_path() / ("sutura_op_builders_" + std::to_string(::getpid()));

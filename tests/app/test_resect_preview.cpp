@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "../../ui/src/resect_preview.hpp"
+#include "sutura/app/resect_preview.hpp"
 #include "sutura/engine/generators.hpp"
 
 using namespace sutura;
@@ -27,7 +27,7 @@ TEST(ResectPreview, AClickOnTheWallCutsAcrossTheVesselThroughItsCentre) {
   const engine::SurfaceMesh m = tube();
   const engine::CentrelineTree tree = engine::extract_centreline(m);
   const double angle = 0.3;
-  const ui::SectionCut cut = ui::cut_at(m, tree, Vec3(4.0 * std::sin(angle), 4.0 * std::cos(angle), 12.3));
+  const app::SectionCut cut = app::cut_at(m, tree, Vec3(4.0 * std::sin(angle), 4.0 * std::cos(angle), 12.3));
   EXPECT_TRUE(cut.closed);
   EXPECT_NEAR(std::abs(cut.plane.normal.normalized().z()), 1.0, 1e-3);
   EXPECT_NEAR(cut.plane.origin.x(), 0.0, 0.05);
@@ -40,10 +40,10 @@ TEST(ResectPreview, AClickOnTheWallCutsAcrossTheVesselThroughItsCentre) {
 TEST(ResectPreview, TwoCutsRemoveTheBandBetweenThem) {
   const engine::SurfaceMesh m = tube();
   const engine::CentrelineTree tree = engine::extract_centreline(m);
-  const ui::ResectPreview p = ui::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(0, -4, 20)}, 0.0);
+  const app::ResectPreview p = app::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(0, -4, 20)}, 0.0);
   ASSERT_TRUE(p.error.empty()) << p.error;
   ASSERT_EQ(p.planes.size(), 2u);
-  EXPECT_NEAR(p.reach, ui::ResectPreview::kAutoReach * std::max(p.cuts[0].wall_distance, p.cuts[1].wall_distance),
+  EXPECT_NEAR(p.reach, app::ResectPreview::kAutoReach * std::max(p.cuts[0].wall_distance, p.cuts[1].wall_distance),
               1e-12);
   ASSERT_EQ(p.loops.size(), 2u);
   const double dz = std::abs(p.planes[1].origin.z() - p.planes[0].origin.z());
@@ -57,7 +57,7 @@ TEST(ResectPreview, TwoCutsRemoveTheBandBetweenThem) {
     EXPECT_LT(c.z(), std::max(p.planes[0].origin.z(), p.planes[1].origin.z()) + 1.0);
   }
   // One click so far: the cut, no resection yet.
-  const ui::ResectPreview one = ui::preview_resection(m, tree, {Vec3(4, 0, 10)}, 0.0);
+  const app::ResectPreview one = app::preview_resection(m, tree, {Vec3(4, 0, 10)}, 0.0);
   EXPECT_EQ(one.planes.size(), 1u);
   EXPECT_TRUE(one.loops.empty());
   EXPECT_TRUE(one.error.empty());
@@ -67,10 +67,10 @@ TEST(ResectPreview, CutsThatCannotBeMadeAreExplained) {
   const engine::SurfaceMesh m = tube();
   const engine::CentrelineTree tree = engine::extract_centreline(m);
   // Both clicks on the same section.
-  const ui::ResectPreview same = ui::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(-4, 0, 10)}, 0.0);
+  const app::ResectPreview same = app::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(-4, 0, 10)}, 0.0);
   EXPECT_FALSE(same.error.empty());
   // A reach shorter than the lumen: the cut does not go all the way round.
-  const ui::ResectPreview short_reach = ui::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(4, 0, 20)}, 2.0);
+  const app::ResectPreview short_reach = app::preview_resection(m, tree, {Vec3(4, 0, 10), Vec3(4, 0, 20)}, 2.0);
   EXPECT_FALSE(short_reach.error.empty());
   EXPECT_TRUE(short_reach.loops.empty());
 }
