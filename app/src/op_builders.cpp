@@ -149,8 +149,7 @@ json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near,
 
 json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier) {
   json op = {{"op", "simulate"}, {"steps", steps}, {"dt", dt}};
-  // The scheme is recorded, so the session replays the same way should the default change
-  // (it did on 2026-12-03, from newton to linearized).
+  // The scheme is recorded, so the session replays the same way should the default change.
   if (relax_steps > 0)
     op["relax"] = {{"steps", relax_steps}};
   else

@@ -94,10 +94,8 @@ struct SimulationSettings {
   int steps = 60;
   float dt = 1e-3f;
   /// Increments of s of a (static) relaxation. 3, as in the bundled arch sessions: fewer,
-  /// larger increments cost less in all (coarse patch aortoplasty, 2026-12-02, with Newton
-  /// steps only: 40 increments 83 iterations and 8.9 s, 10: 34 and 3.6 s, 5: 23 and 2.7 s;
-  /// with the quasi-Newton steps since: 5 increments 1.5 s, 3: 1.1 s; the same lumen to 8
-  /// digits).
+  /// larger increments cost less in all, for the same lumen (docs/performance.md,
+  /// "Measurements behind defaults").
   int relax_steps = 3;
   bool collapse_barrier = false;  ///< records "collapse_barrier": true (session-format.md)
   /// The relaxation method: static (false), or the flap's static-then-damped-dynamics

@@ -6,8 +6,8 @@
 // is bound by memory traffic, not arithmetic: nnz(L) is 7.5M at 20k elements (73 MB in double
 // with the supernodes' padding). Iterations that correct the error of their own step (the
 // quasi-Newton steps of an energy minimisation, the modified Newton of the dynamics) do not need
-// the exact solve, so they read half the bytes. Measured (2026-12-02, docs/performance.md):
-// 1.2-2.2 ms against CHOLMOD's 2.2-3.5 ms at 5k elements, 10-13 against 17-20 ms at 20k.
+// the exact solve, so they read half the bytes (timings: docs/performance.md, "Measurements
+// behind defaults").
 //
 // Two threads: the supernodal elimination tree is split into two halves and a top
 // (supernode_tree.hpp). The halves' solves touch disjoint rows except the top's, so they run at

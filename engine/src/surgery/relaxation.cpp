@@ -241,17 +241,15 @@ RelaxationResult relax_static(const ShellSystem& sys, RestState& rest, const Res
   int done = 0, streak = 0, iterations_before = 0, quasi_before = 0;
   result.s_reached = s;
   // The converged state of the increment before the last one, for the secant predictor
-  // (s_prev < 0: none yet). Measured 2026-12-02, Newton iterations of the static relaxation
-  // without -> with it: patch aortoplasty 33 -> 23 (coarse arch), 43 -> 29 (fine arch);
-  // subclavian flap 119 -> 96; resection 19 -> 18; resection with gusset 38 -> 47.
+  // (s_prev < 0: none yet). Its effect on the Newton iterations: docs/performance.md,
+  // "Measurements behind defaults".
   ShellState prev;
   double s_prev = -1.0;
   ShellState converged = state;  // the last converged state (at s), what a failure returns
   const bool can_escape = p.check_stability && p.statics.linear_solver == LinearSolverKind::Cholmod;
   // The first increment's quasi-Newton steps start from the tangent at the start, a stable
-  // equilibrium (factorize_for_quasi_newton). Measured on the fine patch aortoplasty: no
-  // Levenberg-Marquardt search at all (it took 4 factorisations, 1.2 s) and 3 instead of 6
-  // tangents in the whole relaxation.
+  // equilibrium (factorize_for_quasi_newton), which spares the first increment a
+  // Levenberg-Marquardt search (docs/performance.md, "Measurements behind defaults").
   if (p.statics.linear_solver == LinearSolverKind::Cholmod && p.statics.quasi_newton_steps > 0) {
     rest = rest_at(y0, x0, s);
     factorize_for_quasi_newton(sys, state, 1.0, workspace);

@@ -72,10 +72,10 @@ struct DynamicsParams {
   /// with it. The damping then acts on deformation, not on rigid rotation: a heavy strip
   /// swinging up through a radian settles to its equilibrium, where with the unturned K_d it
   /// still crept, its tip 27 % short, after 2 s. false: K_d is the tangent of the last rebuild
-  /// at a step's start, unturned (the behaviour before 2026-12-03), which damps rigid rotation
-  /// too; the rest-shape relaxation uses that (relaxation.cpp: its damping only has to settle
-  /// the shape, and on the subclavian flap the corotated damping takes 223 instead of 56
-  /// factorisations for the same 120 steps and the same lumen).
+  /// at a step's start, unturned, which damps rigid rotation too; the rest-shape relaxation uses
+  /// that (relaxation.cpp): its damping only has to settle the shape, and the unturned matrix
+  /// needs far fewer factorisations there (docs/performance.md, "Measurements behind
+  /// defaults").
   bool corotated_damping = true;
   LinearSolverKind linear_solver = LinearSolverKind::Cholmod;
   /// Asked before every Newton iteration; false stops the run at once (no step cut), the

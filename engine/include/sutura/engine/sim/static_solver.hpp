@@ -52,10 +52,10 @@ struct StaticSolverParams {
   /// steps per factorisation, >= 0. Such a step reuses the last factorisation (of the tangent
   /// or its shift, at an earlier iterate, or left in the workspace by the previous solve or by
   /// factorize_for_quasi_newton) as the initial inverse Hessian of L-BFGS (20 pairs); it costs
-  /// a gradient and a back-substitution (about 0.03 s at 20k elements) instead of a tangent
-  /// and a factorisation (about 0.6 s). A new tangent is factorised when the residual has not
+  /// a gradient and a back-substitution instead of a tangent and a factorisation (about 20
+  /// times less at 20k elements). A new tangent is factorised when the residual has not
   /// halved over the last 4 quasi-Newton steps, or after this many. 0 = Newton only (every
-  /// step with a new tangent; the behaviour before 2026-12-02).
+  /// step with a new tangent).
   int quasi_newton_steps = 30;
   /// Quasi-Newton steps solve with the factorised tangent rounded to single precision
   /// (LinearSolver::solve_approximately): the pairs correct the initial inverse Hessian
