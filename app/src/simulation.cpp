@@ -1,5 +1,6 @@
 #include "sutura/app/simulation.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace sutura::app {
@@ -123,6 +124,20 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
   if (d < 6 && (system_.loads.has_moments() || system_.fixed_loads.has_moments()))
     throw std::invalid_argument("model '" + model.name() +
                                 "' has no rotational degrees of freedom: moments cannot be applied");
+  // A held rotation the model cannot hold would silently turn a clamp into a pin.
+  for (std::size_t i = 0; d < 6 && i < objects.size(); ++i) {
+    const auto& fixed = objects[i]->sim.constraints.fixed;
+    const auto held = std::count_if(fixed.begin(), fixed.end(),
+                                    [](engine::DofMask m) { return (m & engine::kRotations) != 0; });
+    if (held > 0)
+      throw std::invalid_argument(
+          "model '" + model.name() + "' has no rotational degrees of freedom, but " +
+          std::to_string(held) + " vertices of '" + objects[i]->name +
+          "' are held in rotation (fix, or constrain with rotations): it would hold them in "
+          "translation only, a pinned end instead of a clamped one. Hold their translations "
+          "only (\"dofs\": [\"translations\"]), and clamp an edge by holding two rows of nodes, "
+          "or use the model 'corotational'");
+  }
   system_.model = &model;
   system_.problem.faces = &faces_;
   system_.problem.rest = &rest_;

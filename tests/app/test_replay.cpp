@@ -10,6 +10,7 @@
 #include <thread>
 #include <utility>
 
+#include "replay_fixture.hpp"
 #include "sutura/app/object_view.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
@@ -586,7 +587,7 @@ TEST(Replay, FieldsOfAModel2RunComeFromModel2) {
          "\"segments_around\": 16, \"segments_along\": 10}\n"
          "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
          "\"thickness\": 0.6}\n"
-         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\"}\n"
+         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\", \"dofs\": [\"translations\"]}\n"
          "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
          "{\"op\": \"solve\", \"model\": \"discrete\", \"load_steps\": 2}\n";
   const Session session = load_session(dir / "s.jsonl");
@@ -614,5 +615,35 @@ TEST(Replay, FieldsOfAModel2RunComeFromModel2) {
   ASSERT_GT(top, 0.0);  // the tube is inflated
   EXPECT_LE(off2, 1e-6 * top);   // Model 2's, to float precision
   EXPECT_GT(off1, 1e-2 * top);   // and not Model 1's
+  fs::remove_all(dir);
+}
+
+TEST(Replay, AModelWithoutRotationsRefusesHeldRotations) {
+  // Model 2 has no rotation DOFs: a held rotation (fix's default, or constrain with rx) would
+  // silently make a clamped end a pinned one, so the run is refused, naming the object, and
+  // the same plan with only the translations held runs.
+  const std::string head =
+      "{\"format\": \"sutura-session\", \"version\": 3}\n"
+      "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 2, "
+      "\"segments_length\": 10, \"segments_width\": 2}\n"
+      "{\"op\": \"force\", \"object\": \"s\", \"nearest\": [[10, 0, 0]], \"force\": [0, 0, 1e-6]}\n";
+  const std::string clamp = "{\"op\": \"fix\", \"object\": \"s\", \"box\": {\"min\": [-1, -2, -1], \"max\": [1.1, 2, 1]}";
+  const std::string solve = "{\"op\": \"solve\", \"model\": \"discrete\", \"analysis\": \"linear\"}\n";
+  for (const std::string& held : {clamp + "}\n", clamp + ", \"dofs\": [\"ux\", \"uy\", \"uz\", \"rx\"]}\n"}) {
+    const fs::path dir = fresh_dir("no_rotations");
+    try {
+      sutura::testing::replay_text(head + held + solve, dir);
+      FAIL() << "a held rotation was ignored: " << held;
+    } catch (const SessionError& e) {
+      EXPECT_EQ(e.line(), 5);
+      const std::string what = e.what();
+      EXPECT_NE(what.find("no rotational degrees of freedom"), std::string::npos) << what;
+      EXPECT_NE(what.find("of 's' are held in rotation"), std::string::npos) << what;
+    }
+    fs::remove_all(dir);
+  }
+  const fs::path dir = fresh_dir("no_rotations_ok");
+  const auto r = sutura::testing::replay_text(head + clamp + ", \"dofs\": [\"translations\"]}\n" + solve, dir);
+  EXPECT_EQ(r.report["status"], "ok");
   fs::remove_all(dir);
 }

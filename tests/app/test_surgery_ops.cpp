@@ -135,6 +135,9 @@ TEST(SurgeryOps, TwoStripsJoinWithBothShellModels) {
   std::string discrete = text;
   for (std::size_t at = 0; (at = discrete.find("\"relax\":", at)) != std::string::npos; at += 30)
     discrete.insert(at, "\"model\": \"discrete\", ");
+  // Model 2 holds no rotations (a held one is refused): its far ends hold their translations.
+  for (std::size_t at = 0; (at = discrete.find("{\"op\": \"fix\",", at)) != std::string::npos; at += 20)
+    discrete.insert(at + 1, "\"dofs\": [\"translations\"], ");
   const ReplayResult m2 = run(discrete, "m2");
   for (const auto* r : {&m1, &m2}) {
     EXPECT_EQ(r->report["status"], "ok");
