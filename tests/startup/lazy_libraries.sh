@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The libraries only some paths need are not loaded by the others (issue 28): `sutura --version`
-# and a replay that neither draws nor reads a mesh file must not load OSMesa (and LLVM with it)
-# or assimp; the dynamic loader's log (LD_DEBUG=libs) lists what a run loads.
+# and a replay that neither draws nor reads a mesh file must not load OSMesa (and LLVM with it),
+# assimp, or GLFW (and X11 with it); the dynamic loader's log (LD_DEBUG=libs) lists what a run
+# loads.
 #   lazy_libraries.sh SUTURA OUT
 set -euo pipefail
 exe=$1 out=$2
@@ -18,13 +19,13 @@ check() {
   local what=$1; shift
   local log="$out/$what.log"
   LD_DEBUG=libs "$@" > "$out/$what.out" 2> "$log"
-  if grep -E 'calling init: .*(libOSMesa|libLLVM|libassimp)' "$log"; then
+  if grep -E 'calling init: .*(libOSMesa|libLLVM|libassimp|libglfw|libX11)' "$log"; then
     echo "lazy_libraries: $what loaded a library it does not use" >&2
     exit 1
   fi
   grep -q 'calling init: .*libc\.so' "$log" || {
     echo "lazy_libraries: $what: no loader log (LD_DEBUG unsupported?)" >&2; exit 1; }
-  echo "lazy_libraries: $what loads neither OSMesa nor assimp"
+  echo "lazy_libraries: $what loads neither OSMesa, assimp nor GLFW"
 }
 check version "$exe" --version
 check replay "$exe" replay "$out/s.jsonl" --out "$out/replay" --quiet
@@ -34,4 +35,7 @@ LD_DEBUG=libs "$exe" replay "$out/s.jsonl" --out "$out/drawn" --quiet 2> "$out/d
 grep -q 'calling init: .*libOSMesa' "$out/drawn.log" || {
   echo "lazy_libraries: the snapshot did not load OSMesa" >&2; exit 1; }
 [ -s "$out/drawn/s.png" ] || { echo "lazy_libraries: no snapshot" >&2; exit 1; }
-echo "lazy_libraries: a snapshot loads OSMesa when it draws"
+if grep -E 'calling init: .*(libglfw|libX11)' "$out/drawn.log"; then
+  echo "lazy_libraries: an off-screen snapshot loaded GLFW" >&2; exit 1
+fi
+echo "lazy_libraries: a snapshot loads OSMesa when it draws, and no window library"

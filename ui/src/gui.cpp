@@ -1,7 +1,6 @@
 // run_gui: window, ImGui and the frame loop.
 #include "sutura/ui/gui.hpp"
 
-#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
@@ -17,6 +16,7 @@
 #include "script_player.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/session.hpp"
+#include "sutura/render/glfw_library.hpp"
 #include "sutura/render/renderer.hpp"
 #include "viewport.hpp"
 
@@ -275,7 +275,7 @@ int run_gui(const GuiOptions& options) {
                                options.samples);
   auto* glfw = static_cast<GLFWwindow*>(window.native_window());
   render::Renderer renderer(window);
-  glfwSwapInterval(0);
+  render::glfw().swap_interval(0);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -287,10 +287,10 @@ int run_gui(const GuiOptions& options) {
   io.ConfigWindowsResizeFromEdges = true;
   io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;
   std::array<GLFWcursor*, ImGuiMouseCursor_COUNT> cursors{};
-  cursors[ImGuiMouseCursor_TextInput] = glfwCreateStandardCursor(GLFW_IBEAM_CURSOR);
-  cursors[ImGuiMouseCursor_ResizeNS] = glfwCreateStandardCursor(GLFW_VRESIZE_CURSOR);
-  cursors[ImGuiMouseCursor_ResizeEW] = glfwCreateStandardCursor(GLFW_HRESIZE_CURSOR);
-  cursors[ImGuiMouseCursor_Hand] = glfwCreateStandardCursor(GLFW_HAND_CURSOR);
+  cursors[ImGuiMouseCursor_TextInput] = render::glfw().create_standard_cursor(GLFW_IBEAM_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeNS] = render::glfw().create_standard_cursor(GLFW_VRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeEW] = render::glfw().create_standard_cursor(GLFW_HRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_Hand] = render::glfw().create_standard_cursor(GLFW_HAND_CURSOR);
   ImGuiMouseCursor shown_cursor = ImGuiMouseCursor_Arrow;
   map_imgui_keys();
   ImGui::StyleColorsLight();
@@ -355,13 +355,13 @@ int run_gui(const GuiOptions& options) {
     GuiState& s = *state;
     // Draw continuously only while something happens: a running op gets the CPU (the view
     // follows it at up to 10 frames per second), an idle window waits for input.
-    if (controller->busy()) glfwWaitEventsTimeout(0.1);
-    else if (script) glfwPollEvents();
-    else if (idle_frames > 3) glfwWaitEventsTimeout(0.5);
-    else glfwPollEvents();
+    if (controller->busy()) render::glfw().wait_events_timeout(0.1);
+    else if (script) render::glfw().poll_events();
+    else if (idle_frames > 3) render::glfw().wait_events_timeout(0.5);
+    else render::glfw().poll_events();
     idle_frames = input.empty() ? idle_frames + 1 : 0;
-    if (glfwWindowShouldClose(glfw)) {  // the window's close button: ask first if work would be lost
-      glfwSetWindowShouldClose(glfw, GLFW_FALSE);
+    if (render::glfw().window_should_close(glfw)) {  // the window's close button: ask first if work would be lost
+      render::glfw().set_window_should_close(glfw, GLFW_FALSE);
       s.quit_requested = true;
       if (s.unsaved_work().empty()) s.quit = true;  // also when minimised (no frame to ask in)
     }
@@ -373,8 +373,8 @@ int run_gui(const GuiOptions& options) {
       continue;
     news_drawn = controller->news();
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
-    glfwGetWindowSize(glfw, &width, &height);
-    glfwGetFramebufferSize(glfw, &fb_width, &fb_height);
+    render::glfw().get_window_size(glfw, &width, &height);
+    render::glfw().get_framebuffer_size(glfw, &fb_width, &fb_height);
     if (width <= 0 || height <= 0 || fb_width <= 0 || fb_height <= 0) continue;  // minimised
     if (script) {
       // The part of the view the scene is drawn in (left of a legend), as picking sees it.
@@ -441,7 +441,7 @@ int run_gui(const GuiOptions& options) {
     ImGui::Render();
     if (const ImGuiMouseCursor want = ImGui::GetMouseCursor(); want != shown_cursor) {
       shown_cursor = want;
-      glfwSetCursor(glfw, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
+      render::glfw().set_cursor(glfw, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
     }
 
     try {
@@ -462,16 +462,16 @@ int run_gui(const GuiOptions& options) {
       }
       screenshot_to.reset();
     }
-    glfwSwapBuffers(glfw);
+    render::glfw().swap_buffers(glfw);
   }
   // The step in progress may be the click that quit ("Quit anyway"); any later one never ran.
   if (script && exit_code == 0 && script->steps_left() > 1) {
     std::cerr << "sutura: the window quit before the script ended\n";
     exit_code = 3;
   }
-  glfwSetCursor(glfw, nullptr);
+  render::glfw().set_cursor(glfw, nullptr);
   for (GLFWcursor* c : cursors)
-    if (c) glfwDestroyCursor(c);
+    if (c) render::glfw().destroy_cursor(c);
   close_controller(*controller);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext();

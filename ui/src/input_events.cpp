@@ -1,26 +1,27 @@
 #include "input_events.hpp"
 
-#include <GLFW/glfw3.h>
 #include <imgui.h>
+
+#include "sutura/render/glfw_library.hpp"
 
 namespace sutura::ui {
 
 namespace {
 
-InputQueue& queue_of(GLFWwindow* w) { return *static_cast<InputQueue*>(glfwGetWindowUserPointer(w)); }
+InputQueue& queue_of(GLFWwindow* w) { return *static_cast<InputQueue*>(render::glfw().get_window_user_pointer(w)); }
 
 }  // namespace
 
 void InputQueue::attach(GLFWwindow* window) {
-  glfwSetWindowUserPointer(window, this);
-  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+  render::glfw().set_window_user_pointer(window, this);
+  render::glfw().set_cursor_pos_callback(window, [](GLFWwindow* w, double x, double y) {
     InputEvent e;
     e.kind = InputEvent::Kind::MouseMove;
     e.x = x;
     e.y = y;
     queue_of(w).push(e);
   });
-  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
+  render::glfw().set_mouse_button_callback(window, [](GLFWwindow* w, int button, int action, int mods) {
     InputEvent e;
     e.kind = InputEvent::Kind::MouseButton;
     e.button = button;
@@ -28,14 +29,14 @@ void InputQueue::attach(GLFWwindow* window) {
     e.mods = mods;
     queue_of(w).push(e);
   });
-  glfwSetScrollCallback(window, [](GLFWwindow* w, double dx, double dy) {
+  render::glfw().set_scroll_callback(window, [](GLFWwindow* w, double dx, double dy) {
     InputEvent e;
     e.kind = InputEvent::Kind::Scroll;
     e.x = dx;
     e.y = dy;
     queue_of(w).push(e);
   });
-  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+  render::glfw().set_key_callback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
     if (action == GLFW_REPEAT) return;
     InputEvent e;
     e.kind = InputEvent::Kind::Key;
@@ -44,7 +45,7 @@ void InputQueue::attach(GLFWwindow* window) {
     e.mods = mods;
     queue_of(w).push(e);
   });
-  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned c) {
+  render::glfw().set_char_callback(window, [](GLFWwindow* w, unsigned c) {
     InputEvent e;
     e.kind = InputEvent::Kind::Char;
     e.codepoint = c;
