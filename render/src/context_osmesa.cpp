@@ -1,14 +1,10 @@
 // Headless OpenGL 3.3 core context through OSMesa (Mesa's gallium llvmpipe on the CPU).
-#include <dlfcn.h>
-
 #include <array>
 #include <cstdint>
-#include <mutex>
-#include <optional>
 #include <string>
-#include <type_traits>
 
 #include "osmesa_library.hpp"
+#include "shared_library.hpp"
 #include "sutura/render/context.hpp"
 
 namespace sutura::render {
@@ -16,34 +12,17 @@ namespace sutura::render {
 namespace detail {
 
 OsMesaLibrary load_osmesa(const std::string& soname) {
-  void* handle = dlopen(soname.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (handle == nullptr) {
-    const char* why = dlerror();
-    throw GlError("cannot load " + soname + " for off-screen drawing (install the Debian package "
-                  "libosmesa6): " + (why != nullptr ? why : "unknown error"));
-  }
+  SharedLibrary library(soname, "for off-screen drawing", "libosmesa6", "Mesa 20 or newer");
   OsMesaLibrary lib;
-  const auto resolve = [&](auto& fn, const char* name) {
-    fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(handle, name));
-    if (fn == nullptr) {
-      dlclose(handle);
-      throw GlError(soname + " has no " + name + " (Mesa 20 or newer is needed; Debian package "
-                    "libosmesa6)");
-    }
-  };
-  resolve(lib.create_context_attribs, "OSMesaCreateContextAttribs");
-  resolve(lib.destroy_context, "OSMesaDestroyContext");
-  resolve(lib.make_current, "OSMesaMakeCurrent");
-  resolve(lib.get_proc_address, "OSMesaGetProcAddress");
+  library.resolve(lib.create_context_attribs, "OSMesaCreateContextAttribs");
+  library.resolve(lib.destroy_context, "OSMesaDestroyContext");
+  library.resolve(lib.make_current, "OSMesaMakeCurrent");
+  library.resolve(lib.get_proc_address, "OSMesaGetProcAddress");
   return lib;
 }
 
 const OsMesaLibrary& osmesa() {
-  static std::mutex mutex;
-  static std::optional<OsMesaLibrary> loaded;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (!loaded) loaded = load_osmesa("libOSMesa.so.8");
-  return *loaded;
+  return load_once<OsMesaLibrary>([] { return load_osmesa("libOSMesa.so.8"); });
 }
 
 }  // namespace detail
