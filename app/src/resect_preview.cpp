@@ -30,6 +30,10 @@ engine::Vec3 tangent(const engine::CentrelineTree& tree, const std::vector<std::
 
 }  // namespace
 
+engine::CentrelineTree tool_centreline(const engine::SurfaceMesh& mesh) {
+  return engine::extract_centreline(mesh);
+}
+
 SectionCut cut_at(const engine::SurfaceMesh& mesh, const engine::CentrelineTree& tree, const engine::Vec3& click) {
   std::vector<std::vector<int>> next(tree.points.size());
   for (const auto& [a, b] : tree.edges) {

@@ -132,8 +132,9 @@ MergedSystem::MergedSystem(const std::vector<SceneObject*>& objects,
     if (held > 0)
       throw std::invalid_argument(
           "model '" + model.name() + "' has no rotational degrees of freedom, but " +
-          std::to_string(held) + " vertices of '" + objects[i]->name +
-          "' are held in rotation (fix, or constrain with rotations): it would hold them in "
+          std::to_string(held) + (held == 1 ? " vertex" : " vertices") + " of '" + objects[i]->name +
+          (held == 1 ? "' is" : "' are") +
+          " held in rotation (fix, or constrain with rotations): it would hold them in "
           "translation only, a pinned end instead of a clamped one. Hold their translations "
           "only (\"dofs\": [\"translations\"]), and clamp an edge by holding two rows of nodes, "
           "or use the model 'corotational'");

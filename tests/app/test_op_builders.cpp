@@ -8,7 +8,10 @@
 
 #include "sutura/app/op_builders.hpp"
 #include "sutura/app/session.hpp"
+#include "sutura/engine/errors.hpp"
 #include "sutura/engine/generators.hpp"
+#include "sutura/engine/mesh_io.hpp"
+#include "sutura/engine/surgery/boundary_chain.hpp"
 
 namespace fs = std::filesystem;
 using namespace sutura::app;
@@ -94,4 +97,35 @@ TEST(OpBuilders, ASnapshotOfACutOpenViewRecordsItsPlane) {
   ASSERT_TRUE(op.clip.has_value());
   EXPECT_DOUBLE_EQ(op.clip->point[2], 3.0);
   EXPECT_DOUBLE_EQ(op.clip->normal[1], -1.0);
+}
+
+// The Fix tool's two clicks hold the boundary run between them, as the join op would resolve
+// it (nearest boundary vertices, boundary direction): every vertex of that run and only those,
+// in all DOFs; clicks on two different loops are refused, naming why.
+TEST(OpBuilders, TheFixToolHoldsTheBoundaryRunBetweenItsClicks) {
+  const sutura::engine::SurfaceMesh m =
+      sutura::engine::load_mesh(std::string(SUTURA_SOURCE_DIR) + "/tests/gui/two_strips.obj");
+  const sutura::engine::Vec3 a(18, -5, 0), b(18, 5, 0);  // the corners of strip 1's facing end
+  const nlohmann::json op = fix_run_op(m, "strips", a + sutura::engine::Vec3(0.1, 0.1, 0), b, true);
+  EXPECT_EQ(op["op"], "fix");
+  EXPECT_EQ(op["object"], "strips");
+  EXPECT_EQ(op["dofs"], nlohmann::json::array({"all"}));
+  sutura::engine::ChainSpec spec;
+  spec.from = a;
+  spec.to = b;
+  std::vector<int> want;
+  for (auto v : sutura::engine::find_boundary_chain(m, spec).vertices) want.push_back(v.value);
+  ASSERT_GE(want.size(), 2u);
+  EXPECT_EQ(op["vertices"].get<std::vector<int>>(), want);
+  EXPECT_EQ(m.position(sutura::engine::VertexId(want.front())), a);
+  EXPECT_EQ(m.position(sutura::engine::VertexId(want.back())), b);
+  // Without the fix op (an older build's op table): the same vertices through constrain.
+  EXPECT_EQ(fix_run_op(m, "strips", a, b, false)["op"], "constrain");
+  // Strip 1's corner and strip 2's: no run joins them.
+  try {
+    (void)fix_run_op(m, "strips", a, sutura::engine::Vec3(22, -5, 0), true);
+    ADD_FAILURE() << "a run across two loops";
+  } catch (const sutura::engine::InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("loop"), std::string::npos) << e.what();
+  }
 }

@@ -638,7 +638,7 @@ TEST(Replay, AModelWithoutRotationsRefusesHeldRotations) {
       EXPECT_EQ(e.line(), 5);
       const std::string what = e.what();
       EXPECT_NE(what.find("no rotational degrees of freedom"), std::string::npos) << what;
-      EXPECT_NE(what.find("of 's' are held in rotation"), std::string::npos) << what;
+      EXPECT_NE(what.find("vertices of 's' are held in rotation"), std::string::npos) << what;
     }
     fs::remove_all(dir);
   }

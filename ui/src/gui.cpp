@@ -273,7 +273,7 @@ int run_gui(const GuiOptions& options) {
 
   render::WindowContext window(options.width, options.height, "Sutura", options.visible,
                                options.samples);
-  auto* glfw = static_cast<GLFWwindow*>(window.native_window());
+  auto* window_handle = static_cast<GLFWwindow*>(window.native_window());
   render::Renderer renderer(window);
   render::glfw().swap_interval(0);
 
@@ -298,7 +298,7 @@ int run_gui(const GuiOptions& options) {
   ImGui_ImplOpenGL3_Init("#version 330");
 
   InputQueue input;
-  input.attach(glfw);
+  input.attach(window_handle);
   std::optional<GuiState> state;
   state.emplace(*controller);
   start_session(*state);
@@ -360,8 +360,8 @@ int run_gui(const GuiOptions& options) {
     else if (idle_frames > 3) render::glfw().wait_events_timeout(0.5);
     else render::glfw().poll_events();
     idle_frames = input.empty() ? idle_frames + 1 : 0;
-    if (render::glfw().window_should_close(glfw)) {  // the window's close button: ask first if work would be lost
-      render::glfw().set_window_should_close(glfw, GLFW_FALSE);
+    if (render::glfw().window_should_close(window_handle)) {  // the window's close button: ask first if work would be lost
+      render::glfw().set_window_should_close(window_handle, GLFW_FALSE);
       s.quit_requested = true;
       if (s.unsaved_work().empty()) s.quit = true;  // also when minimised (no frame to ask in)
     }
@@ -373,8 +373,8 @@ int run_gui(const GuiOptions& options) {
       continue;
     news_drawn = controller->news();
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
-    render::glfw().get_window_size(glfw, &width, &height);
-    render::glfw().get_framebuffer_size(glfw, &fb_width, &fb_height);
+    render::glfw().get_window_size(window_handle, &width, &height);
+    render::glfw().get_framebuffer_size(window_handle, &fb_width, &fb_height);
     if (width <= 0 || height <= 0 || fb_width <= 0 || fb_height <= 0) continue;  // minimised
     if (script) {
       // The part of the view the scene is drawn in (left of a legend), as picking sees it.
@@ -441,7 +441,7 @@ int run_gui(const GuiOptions& options) {
     ImGui::Render();
     if (const ImGuiMouseCursor want = ImGui::GetMouseCursor(); want != shown_cursor) {
       shown_cursor = want;
-      render::glfw().set_cursor(glfw, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
+      render::glfw().set_cursor(window_handle, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
     }
 
     try {
@@ -462,14 +462,14 @@ int run_gui(const GuiOptions& options) {
       }
       screenshot_to.reset();
     }
-    render::glfw().swap_buffers(glfw);
+    render::glfw().swap_buffers(window_handle);
   }
   // The step in progress may be the click that quit ("Quit anyway"); any later one never ran.
   if (script && exit_code == 0 && script->steps_left() > 1) {
     std::cerr << "sutura: the window quit before the script ended\n";
     exit_code = 3;
   }
-  render::glfw().set_cursor(glfw, nullptr);
+  render::glfw().set_cursor(window_handle, nullptr);
   for (GLFWcursor* c : cursors)
     if (c) render::glfw().destroy_cursor(c);
   close_controller(*controller);

@@ -90,7 +90,7 @@ const engine::CentrelineTree* GuiState::selected_centreline() {
     centreline.reset();
     centreline_error.clear();
     try {
-      centreline = engine::extract_centreline(obj->mesh);
+      centreline = app::tool_centreline(obj->mesh);
     } catch (const std::exception& e) {
       centreline_error = e.what();
     }

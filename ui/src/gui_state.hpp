@@ -262,7 +262,7 @@ struct GuiState {
   /// The stage gate for `a`, else missing_op(op) when op is non-empty.
   [[nodiscard]] std::optional<std::string> why_not(Command a, const std::string& op = {}) const;
   [[nodiscard]] const app::SceneObject* selected() const;
-  /// The selected object's automatic centreline (engine::extract_centreline of its current
+  /// The selected object's automatic centreline (app::tool_centreline of its current
   /// shape), made once per workspace_revision and object; nullptr (centreline_error says why)
   /// when there is no object or it cannot be made. Not while the controller is busy.
   const engine::CentrelineTree* selected_centreline();

@@ -4,7 +4,7 @@
 // the last converged load step, retries with halved load increments, and is reported.
 // Where the tangent is not positive definite (Cholmod): with shift_indefinite a
 // Levenberg-Marquardt shift; otherwise, under follower pressure, first the tangent without the
-// load stiffness (a descent step of the potential, see static_solver.cpp), then LDL^T on the
+// load stiffness (a descent step of the potential, see static_newton.cpp), then LDL^T on the
 // true tangent.
 #include <functional>
 #include <string>
