@@ -274,8 +274,9 @@ int run_gui(const GuiOptions& options) {
   render::WindowContext window(options.width, options.height, "Sutura", options.visible,
                                options.samples);
   auto* window_handle = static_cast<GLFWwindow*>(window.native_window());
+  const render::GlfwLibrary& glfw = render::glfw();  // resolved when the window opened
   render::Renderer renderer(window);
-  render::glfw().swap_interval(0);
+  glfw.swap_interval(0);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -287,10 +288,10 @@ int run_gui(const GuiOptions& options) {
   io.ConfigWindowsResizeFromEdges = true;
   io.BackendFlags |= ImGuiBackendFlags_HasMouseCursors;
   std::array<GLFWcursor*, ImGuiMouseCursor_COUNT> cursors{};
-  cursors[ImGuiMouseCursor_TextInput] = render::glfw().create_standard_cursor(GLFW_IBEAM_CURSOR);
-  cursors[ImGuiMouseCursor_ResizeNS] = render::glfw().create_standard_cursor(GLFW_VRESIZE_CURSOR);
-  cursors[ImGuiMouseCursor_ResizeEW] = render::glfw().create_standard_cursor(GLFW_HRESIZE_CURSOR);
-  cursors[ImGuiMouseCursor_Hand] = render::glfw().create_standard_cursor(GLFW_HAND_CURSOR);
+  cursors[ImGuiMouseCursor_TextInput] = glfw.create_standard_cursor(GLFW_IBEAM_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeNS] = glfw.create_standard_cursor(GLFW_VRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_ResizeEW] = glfw.create_standard_cursor(GLFW_HRESIZE_CURSOR);
+  cursors[ImGuiMouseCursor_Hand] = glfw.create_standard_cursor(GLFW_HAND_CURSOR);
   ImGuiMouseCursor shown_cursor = ImGuiMouseCursor_Arrow;
   map_imgui_keys();
   ImGui::StyleColorsLight();
@@ -355,13 +356,13 @@ int run_gui(const GuiOptions& options) {
     GuiState& s = *state;
     // Draw continuously only while something happens: a running op gets the CPU (the view
     // follows it at up to 10 frames per second), an idle window waits for input.
-    if (controller->busy()) render::glfw().wait_events_timeout(0.1);
-    else if (script) render::glfw().poll_events();
-    else if (idle_frames > 3) render::glfw().wait_events_timeout(0.5);
-    else render::glfw().poll_events();
+    if (controller->busy()) glfw.wait_events_timeout(0.1);
+    else if (script) glfw.poll_events();
+    else if (idle_frames > 3) glfw.wait_events_timeout(0.5);
+    else glfw.poll_events();
     idle_frames = input.empty() ? idle_frames + 1 : 0;
-    if (render::glfw().window_should_close(window_handle)) {  // the window's close button: ask first if work would be lost
-      render::glfw().set_window_should_close(window_handle, GLFW_FALSE);
+    if (glfw.window_should_close(window_handle)) {  // the window's close button: ask first if work would be lost
+      glfw.set_window_should_close(window_handle, GLFW_FALSE);
       s.quit_requested = true;
       if (s.unsaved_work().empty()) s.quit = true;  // also when minimised (no frame to ask in)
     }
@@ -373,8 +374,8 @@ int run_gui(const GuiOptions& options) {
       continue;
     news_drawn = controller->news();
     int width = 0, height = 0, fb_width = 0, fb_height = 0;
-    render::glfw().get_window_size(window_handle, &width, &height);
-    render::glfw().get_framebuffer_size(window_handle, &fb_width, &fb_height);
+    glfw.get_window_size(window_handle, &width, &height);
+    glfw.get_framebuffer_size(window_handle, &fb_width, &fb_height);
     if (width <= 0 || height <= 0 || fb_width <= 0 || fb_height <= 0) continue;  // minimised
     if (script) {
       // The part of the view the scene is drawn in (left of a legend), as picking sees it.
@@ -441,7 +442,7 @@ int run_gui(const GuiOptions& options) {
     ImGui::Render();
     if (const ImGuiMouseCursor want = ImGui::GetMouseCursor(); want != shown_cursor) {
       shown_cursor = want;
-      render::glfw().set_cursor(window_handle, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
+      glfw.set_cursor(window_handle, want >= 0 && want < ImGuiMouseCursor_COUNT ? cursors[std::size_t(want)] : nullptr);
     }
 
     try {
@@ -462,16 +463,16 @@ int run_gui(const GuiOptions& options) {
       }
       screenshot_to.reset();
     }
-    render::glfw().swap_buffers(window_handle);
+    glfw.swap_buffers(window_handle);
   }
   // The step in progress may be the click that quit ("Quit anyway"); any later one never ran.
   if (script && exit_code == 0 && script->steps_left() > 1) {
     std::cerr << "sutura: the window quit before the script ended\n";
     exit_code = 3;
   }
-  render::glfw().set_cursor(window_handle, nullptr);
+  glfw.set_cursor(window_handle, nullptr);
   for (GLFWcursor* c : cursors)
-    if (c) render::glfw().destroy_cursor(c);
+    if (c) glfw.destroy_cursor(c);
   close_controller(*controller);
   ImGui_ImplOpenGL3_Shutdown();
   ImGui::DestroyContext();
