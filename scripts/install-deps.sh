@@ -21,6 +21,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   xvfb xauth xdotool x11-utils
+  poppler-utils
 )
 case "${1:-}" in
   "") ;;

@@ -170,6 +170,7 @@ std::string describe_action(const json& j) {
       out += " to " + number(j["target_edge_length"].get<double>()) + " mm edges";
     return out;
   }
+  if (op == "export_patch_template") return "Cutting template of a patch of " + object;
   if (op == "undo") return "Undo";
   if (op == "redo") return "Redo";
   return op + (j.contains("object") ? " on " + object : std::string());

@@ -76,6 +76,7 @@ struct Run {
   json execute(const LoadOp& op);
   json execute(const SnapshotOp& op);
   json execute(const ExportOp& op);
+  json execute(const ExportPatchTemplateOp& op);
   json execute(const ReportOp& op, double elapsed);
 
   // Simulation ops (replay_simulation_ops.cpp).

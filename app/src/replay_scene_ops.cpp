@@ -1,4 +1,5 @@
-// Execution of the scene ops (generate, load, snapshot, export, report) and the report.
+// Execution of the scene ops (generate, load, snapshot, export, export_patch_template,
+// report) and the report.
 #include "replay_run.hpp"
 
 #include <cmath>
@@ -6,6 +7,7 @@
 
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
+#include "sutura/app/patch_template.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/blas_kernels.hpp"
@@ -13,6 +15,7 @@
 #include "sutura/engine/errors.hpp"
 #include "sutura/engine/mesh_io.hpp"
 #include "sutura/engine/patient/prepare.hpp"
+#include "sutura/render/vector_page.hpp"
 
 namespace sutura::app::detail {
 
@@ -266,6 +269,34 @@ json Run::execute(const SnapshotOp& op) {
 json Run::execute(const ExportOp& op) {
   engine::save_mesh(object(op.object).mesh, output(op.file));
   return {{"object", op.object}, {"file", op.file.generic_string()}};
+}
+
+json Run::execute(const ExportPatchTemplateOp& op) {
+  PatchTemplateOptions options;
+  options.patch = op.patch;
+  options.proximal = op.proximal;
+  options.bite_spacing_mm = op.bite_spacing;
+  options.seam_allowance_mm = op.seam_allowance;
+  const std::string heading = "Sutura cutting template: " + session.file.filename().string() +
+                              ", object '" + op.object + "', patch " + std::to_string(op.patch);
+  const PatchTemplate t = make_patch_template(object(op.object), heading, options);
+  const std::string bytes =
+      op.file.extension() == ".pdf" ? render::to_pdf(t.page) : render::to_svg(t.page);
+  engine::write_file_atomically(output(op.file), bytes);
+  return {{"object", op.object},
+          {"file", op.file.generic_string()},
+          {"patch", op.patch},
+          {"faces", t.faces},
+          {"seam_length_mm", t.seam_length_mm},
+          {"area_mm2", t.area_mm2},
+          {"rest_seam_length_mm", t.rest_seam_length_mm},
+          {"rest_area_mm2", t.rest_area_mm2},
+          {"cut_length_mm", t.cut_length_mm},
+          {"max_gap_mm", t.max_gap_mm},
+          {"length_mm", t.length_mm},
+          {"width_mm", t.width_mm},
+          {"bites", t.bites},
+          {"page_mm", {t.page.width_mm, t.page.height_mm}}};
 }
 
 json Run::execute(const ReportOp& op, double elapsed) {

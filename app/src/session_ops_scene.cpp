@@ -1,4 +1,4 @@
-// Parsers of the scene ops: generate, load, snapshot, export, report.
+// Parsers of the scene ops: generate, load, snapshot, export, export_patch_template, report.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -159,6 +159,20 @@ ExportOp parse_export(Fields& f) {
   return op;
 }
 
+ExportPatchTemplateOp parse_export_patch_template(Fields& f) {
+  ExportPatchTemplateOp op;
+  op.object = object_name(f);
+  op.file = output_file(f, "file", {".svg", ".pdf"});
+  op.patch = f.optional_int("patch", 1, 1, 1000);
+  op.proximal = vec(f.required_vec3("proximal"));
+  op.bite_spacing = f.optional_positive("bite_spacing", op.bite_spacing);
+  if (op.bite_spacing > 20.0) f.fail("bite_spacing", "must be at most 20 mm");
+  op.seam_allowance = f.optional_number("seam_allowance", op.seam_allowance);
+  if (!(op.seam_allowance >= 0.0 && op.seam_allowance <= 20.0))
+    f.fail("seam_allowance", "must be in [0, 20] mm");
+  return op;
+}
+
 ReportOp parse_report(Fields& f) {
   ReportOp op;
   op.file = output_file(f, "file", {".json"});
@@ -173,6 +187,8 @@ const std::vector<OpParser>& scene_op_parsers() {
       {"load", [](Fields& f, const std::filesystem::path& file) -> Op { return parse_load(f, file); }},
       {"snapshot", [](Fields& f, const std::filesystem::path&) -> Op { return parse_snapshot(f); }},
       {"export", [](Fields& f, const std::filesystem::path&) -> Op { return parse_export(f); }},
+      {"export_patch_template",
+       [](Fields& f, const std::filesystem::path&) -> Op { return parse_export_patch_template(f); }},
       {"report", [](Fields& f, const std::filesystem::path&) -> Op { return parse_report(f); }},
   };
   return parsers;

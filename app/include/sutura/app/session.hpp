@@ -141,6 +141,17 @@ struct ExportOp {
   std::filesystem::path file;
 };
 
+/// Writes the cutting template of a sewn-in patch (.svg or .pdf, at true scale) inside the
+/// output directory (patch_template.hpp).
+struct ExportPatchTemplateOp {
+  std::string object;
+  std::filesystem::path file;
+  int patch = 1;  ///< 1-based, in the order the patches were sewn in
+  engine::Vec3 proximal = engine::Vec3::Zero();  ///< near the patch's proximal end, mm
+  double bite_spacing = 1.0;    ///< mm, (0, 20]
+  double seam_allowance = 2.0;  ///< mm, [0, 20]
+};
+
 /// Writes the report so far (JSON) inside the output directory.
 struct ReportOp {
   std::filesystem::path file;
@@ -394,7 +405,7 @@ struct DistanceOp {
 struct UndoOp {};
 struct RedoOp {};
 
-using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ReportOp, MaterialOp,
+using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ExportPatchTemplateOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
                         UnloadOp, SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
                         RemeshOp, MeasureOp, DistanceOp, UndoOp, RedoOp>;
