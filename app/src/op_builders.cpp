@@ -1,5 +1,6 @@
 #include "sutura/app/op_builders.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <stdexcept>
@@ -206,6 +207,22 @@ json snapshot_op(const std::string& file, const SnapshotView& view, bool side_by
 
 json export_op(const std::string& object, const std::string& file) {
   return {{"op", "export"}, {"object", object}, {"file", file}};
+}
+
+json patch_template_op(const Plan& plan, const std::string& object, std::size_t patches,
+                       const std::string& file) {
+  if (patches == 0) throw std::invalid_argument("'" + object + "' has no patch: add one with the Patch tool.");
+  for (std::size_t i = std::min(plan.applied, plan.steps.size()); i-- > 0;) {
+    const json& a = plan.steps[i].source;
+    if (plan.steps[i].op == "patch" && a.value("object", std::string()) == object && a.contains("start"))
+      return {{"op", "export_patch_template"},
+              {"object", object},
+              {"file", file},
+              {"patch", patches},
+              {"proximal", a["start"]}};
+  }
+  throw std::invalid_argument("No patch step on '" + object +
+                              "' in this plan, so the patch's proximal end is not known.");
 }
 
 }  // namespace sutura::app

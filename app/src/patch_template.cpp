@@ -171,7 +171,7 @@ PatchTemplate make_patch_template(const SceneObject& obj, const std::string& hea
 
   const double centre_x = 0.5 * page.width_mm;
   page.labels.push_back({{centre_x, kPatchTop - 4.0}, "PROXIMAL", 3.5, true});
-  page.labels.push_back({{centre_x, kPatchTop + cut_box.sizes().y() + 8.0}, "DISTAL", 3.5, true});
+  page.labels.push_back({{centre_x, kPatchTop + cut_box.sizes().y() + 6.5}, "DISTAL", 3.5, true});
 
   // Scale bar: 10 mm with end ticks.
   const double bar_y = page.height_mm - 20.0;

@@ -129,3 +129,25 @@ TEST(OpBuilders, TheFixToolHoldsTheBoundaryRunBetweenItsClicks) {
     EXPECT_NE(std::string(e.what()).find("loop"), std::string::npos) << e.what();
   }
 }
+
+TEST(OpBuilders, TheCuttingTemplateIsOfTheLastPatchWithItsStartProximal) {
+  Plan plan;
+  plan.steps.push_back({3, "patch", {{"op", "patch"}, {"object", "a"}, {"start", {1, 2, 3}}, {"end", {4, 5, 6}}}, {}});
+  plan.steps.push_back({4, "patch", {{"op", "patch"}, {"object", "b"}, {"start", {0, 0, 0}}, {"end", {1, 1, 1}}}, {}});
+  plan.steps.push_back({5, "patch", {{"op", "patch"}, {"object", "a"}, {"start", {7, 8, 9}}, {"end", {4, 5, 6}}}, {}});
+  plan.applied = 3;
+  nlohmann::json op = patch_template_op(plan, "a", 2, "t.pdf");
+  EXPECT_EQ(op, nlohmann::json({{"op", "export_patch_template"}, {"object", "a"}, {"file", "t.pdf"},
+                                {"patch", 2}, {"proximal", {7, 8, 9}}}));
+  plan.applied = 2;  // the second patch on "a" undone
+  op = patch_template_op(plan, "a", 1, "t.pdf");
+  EXPECT_EQ(op["proximal"], nlohmann::json({1, 2, 3}));
+  EXPECT_EQ(op["patch"], 1);
+  try {
+    (void)patch_template_op(plan, "a", 0, "t.pdf");
+    ADD_FAILURE() << "no patch, yet an op";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("has no patch"), std::string::npos);
+  }
+  EXPECT_THROW((void)patch_template_op(plan, "c", 1, "t.pdf"), std::invalid_argument);
+}

@@ -49,4 +49,10 @@ if [ -e "$out/meshes/result.obj" ]; then
     exit 1
   }
 fi
+if [ -e "$out/patch_template.pdf" ]; then
+  cmp "$out/patch_template.pdf" "$out/replayed/patch_template.pdf" || {
+    echo "gui test: the replayed cutting template differs from the GUI's" >&2
+    exit 1
+  }
+fi
 echo "gui test: ok ($out)"

@@ -191,6 +191,7 @@ struct GuiState {
   int measure_count = 0;
   char snapshot_file[128] = "gui_snapshot.png";
   char export_file[128] = "meshes/result.obj";
+  char template_file[128] = "patch_template.pdf";
 
   // Plan: opening and generating.
   char open_path[512] = "";
