@@ -171,6 +171,16 @@ std::string describe_action(const json& j) {
     return out;
   }
   if (op == "export_patch_template") return "Cutting template of a patch of " + object;
+  if (op == "design_patch") {
+    const json t = j.value("target", json::object());
+    const std::string target =
+        t.contains("min_area_mm2") && t["min_area_mm2"].is_number()
+            ? "a smallest lumen area of " + number(t["min_area_mm2"].get<double>()) + " mm2"
+        : t.contains("coarctation_index") && t["coarctation_index"].is_number()
+            ? "a coarctation index of " + number(t["coarctation_index"].get<double>())
+            : "a target";
+    return "Design a patch for " + object + ": the width that gives " + target;
+  }
   if (op == "undo") return "Undo";
   if (op == "redo") return "Redo";
   return op + (j.contains("object") ? " on " + object : std::string());

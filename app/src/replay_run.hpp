@@ -111,6 +111,8 @@ struct Run {
   json execute(const ResectOp& op);
   json execute(const RemeshOp& op);
   json execute(const MeasureOp& op);
+  // design_patch (replay_design_patch.cpp): candidates of patch + simulate + measure.
+  json execute(const DesignPatchOp& op);
   json execute(const DistanceOp& op);
   json execute(const UndoOp& op);
   json execute(const RedoOp& op);

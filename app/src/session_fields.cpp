@@ -141,7 +141,7 @@ std::optional<Fields> Fields::optional_object(const std::string& key) {
   if (!has(key)) return std::nullopt;
   const json& v = take(key);
   if (!v.is_object()) fail(key, "must be an object, got " + type_name(v));
-  Fields nested(v, file_, line_, op_);
+  Fields nested(v, file_, line_, op_, format_version_);
   nested.prefix_ = qualified(key) + ".";
   return nested;
 }
@@ -154,7 +154,7 @@ std::vector<Fields> Fields::object_list(const std::string& key) {
   for (std::size_t i = 0; i < v.size(); ++i) {
     const std::string name = key + "[" + std::to_string(i) + "]";
     if (!v[i].is_object()) fail(name, "must be an object, got " + type_name(v[i]));
-    Fields nested(v[i], file_, line_, op_);
+    Fields nested(v[i], file_, line_, op_, format_version_);
     nested.prefix_ = qualified(name) + ".";
     out.push_back(std::move(nested));
   }

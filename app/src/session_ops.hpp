@@ -17,13 +17,16 @@ struct OpParser {
   OpParse parse;
 };
 
-/// generate, load, snapshot, export, report.
+/// generate, load, snapshot, export, export_patch_template, report.
 const std::vector<OpParser>& scene_op_parsers();
 /// material, constrain, fix, force, line_load, pressure, body_force, solve, unload, simulate,
 /// probe, check.
 const std::vector<OpParser>& simulation_op_parsers();
-/// incise, join, patch, resect, measure, undo, redo (session_ops_surgery.cpp).
+/// incise, join, patch, resect, remesh, measure, design_patch, distance, undo, redo
+/// (session_ops_surgery.cpp).
 const std::vector<OpParser>& surgery_op_parsers();
+/// A simulate op's fields (design_patch's `simulate` part).
+SimulateOp parse_simulate_op(Fields& f);
 
 /// An output path field: relative, no escapes, one of `extensions` (lower case, with dot).
 std::filesystem::path output_file(Fields& f, const std::string& key,

@@ -317,6 +317,8 @@ CheckOp parse_check(Fields& f) {
 
 }  // namespace
 
+SimulateOp parse_simulate_op(Fields& f) { return parse_simulate(f); }
+
 const std::vector<OpParser>& simulation_op_parsers() {
   static const std::vector<OpParser> parsers = {
       {"material", [](Fields& f, const std::filesystem::path&) -> Op { return parse_material(f); }},

@@ -108,9 +108,8 @@ engine::ShellMaterial default_patch_material() {
   return m;
 }
 
-PatchOp parse_patch(Fields& f) {
-  PatchOp op;
-  op.object = object_name(f);
+// Every field of a patch but its object (design_patch gives the object once for its parts).
+void parse_patch_fields(Fields& f, PatchOp& op) {
   op.start = vec(f.required_vec3("start"));
   op.end = vec(f.required_vec3("end"));
   op.params.shape = engine::parse_patch_shape(
@@ -135,6 +134,12 @@ PatchOp parse_patch(Fields& f) {
   op.remesh = !remesh                   ? SeamRemesh::None
               : f.format_version() >= 3 ? SeamRemesh::Matched
                                         : SeamRemesh::HostAfterJoin;
+}
+
+PatchOp parse_patch(Fields& f) {
+  PatchOp op;
+  op.object = object_name(f);
+  parse_patch_fields(f, op);
   return op;
 }
 
@@ -163,9 +168,8 @@ ResectOp parse_resect(Fields& f) {
   return op;
 }
 
-MeasureOp parse_measure(Fields& f) {
-  MeasureOp op;
-  op.object = object_name(f);
+// Every field of a measure but its object.
+void parse_measure_fields(Fields& f, MeasureOp& op) {
   op.name = f.required_string("name");
   if (f.has("plane") == f.has("centreline"))
     f.fail("plane", "give either plane {origin, normal} or centreline [points] or \"auto\"");
@@ -189,6 +193,63 @@ MeasureOp parse_measure(Fields& f) {
   }
   op.max_radius = f.optional_number("max_radius", 0.0);
   if (op.max_radius < 0.0) f.fail("max_radius", "must be >= 0 (0 = unlimited)");
+}
+
+MeasureOp parse_measure(Fields& f) {
+  MeasureOp op;
+  op.object = object_name(f);
+  parse_measure_fields(f, op);
+  return op;
+}
+
+DesignPatchOp parse_design_patch(Fields& f) {
+  DesignPatchOp op;
+  const std::string object = object_name(f);
+  auto part = [&](const char* key, const char* what) {
+    std::optional<Fields> p = f.optional_object(key);
+    if (!p) f.fail(key, std::string("missing: ") + what);
+    return std::move(*p);
+  };
+  Fields patch = part("patch", "the patch to size ({start, end, shape, material, ...}, no width)");
+  if (patch.has("width")) patch.fail("width", "is what design_patch chooses: give width_range");
+  op.patch.object = object;
+  parse_patch_fields(patch, op.patch);
+  patch.finish();
+  Fields run = part("simulate", "each candidate's run ({relax: {...}, ...}, as a simulate op)");
+  if (!run.has("relax")) run.fail("relax", "missing: each candidate's run relaxes its sutures");
+  op.simulate = parse_simulate_op(run);
+  run.finish();
+  if (op.simulate.objects.empty()) op.simulate.objects = {object};
+  Fields measure = part("measure", "the lumen profile that is sized ({name, centreline, ...})");
+  op.measure.object = object;
+  parse_measure_fields(measure, op.measure);
+  if (op.measure.plane) measure.fail("plane", "design_patch measures along a centreline");
+  measure.finish();
+  const auto range = f.optional_range("width_range");
+  if (!range) f.fail("width_range", "missing: [narrowest, widest] patch to try, mm");
+  op.width_min = (*range)[0];
+  op.width_max = (*range)[1];
+  if (op.width_min < 0.5) f.fail("width_range", "must start at 0.5 mm or more (a suture bite)");
+  if (op.width_max > 50.0) f.fail("width_range", "must end at 50 mm or less");
+  Fields target = part("target", "{min_area_mm2: ...} or {coarctation_index: ...}");
+  if (target.has("min_area_mm2") == target.has("coarctation_index"))
+    target.fail("min_area_mm2", "give one of min_area_mm2 and coarctation_index");
+  if (target.has("min_area_mm2")) {
+    op.target = DesignPatchOp::Target::MinArea;
+    op.target_value = target.optional_positive("min_area_mm2", 1.0);
+  } else {
+    op.target = DesignPatchOp::Target::CoarctationIndex;
+    op.target_value = target.optional_positive("coarctation_index", 1.0);
+    if (op.target_value > 2.0) target.fail("coarctation_index", "must be in (0, 2]");
+  }
+  target.finish();
+  op.tolerance = f.optional_positive("tolerance", op.tolerance);
+  if (op.tolerance > 1.0) f.fail("tolerance", "must be in (0, 1]");
+  if (f.has("max_bulge")) {
+    op.max_bulge = f.optional_positive("max_bulge", 1.0);
+    if (*op.max_bulge < 1.0) f.fail("max_bulge", "must be >= 1 (a ratio of diameters)");
+  }
+  op.max_relaxations = f.optional_int("max_relaxations", op.max_relaxations, 2, 50);
   return op;
 }
 
@@ -230,6 +291,7 @@ const std::vector<OpParser>& surgery_op_parsers() {
       {"resect", [](Fields& f, const std::filesystem::path&) -> Op { return parse_resect(f); }},
       {"remesh", [](Fields& f, const std::filesystem::path&) -> Op { return parse_remesh(f); }},
       {"measure", [](Fields& f, const std::filesystem::path&) -> Op { return parse_measure(f); }},
+      {"design_patch", [](Fields& f, const std::filesystem::path&) -> Op { return parse_design_patch(f); }},
       {"distance", [](Fields& f, const std::filesystem::path&) -> Op { return parse_distance(f); }},
       {"undo", [](Fields&, const std::filesystem::path&) -> Op { return UndoOp{}; }},
       {"redo", [](Fields&, const std::filesystem::path&) -> Op { return RedoOp{}; }},

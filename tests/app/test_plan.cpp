@@ -136,6 +136,12 @@ TEST(Plan, DescribesEachOpInWords) {
             "Incise 'a' through 2 points, snapped to mesh edges");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "patch", "object": "aorta", "shape": "triangle", "width": 4.5})")),
             "Patch into 'aorta': gusset, 4.5 mm wide");
+  EXPECT_EQ(describe_action(json::parse(R"({"op": "design_patch", "object": "aorta", "target": {"min_area_mm2": 20}})")),
+            "Design a patch for 'aorta': the width that gives a smallest lumen area of 20 mm2");
+  EXPECT_EQ(describe_action(json::parse(R"({"op": "design_patch", "object": "a", "target": {"coarctation_index": 0.8}})")),
+            "Design a patch for 'a': the width that gives a coarctation index of 0.8");
+  EXPECT_EQ(describe_action(json::parse(R"({"op": "export_patch_template", "object": "a", "file": "t.pdf"})")),
+            "Cutting template of a patch of 'a'");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "join", "object": "a", "chains": [{"loop": [0,0,0]}, {"loop": [1,0,0]}]})")),
             "End-to-end anastomosis on 'a'");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "join", "object": "a", "chains": [{"from": [0,0,0], "to": [1,0,0]}, {"from": [0,1,0], "to": [1,1,0]}]})")),

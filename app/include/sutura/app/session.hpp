@@ -393,6 +393,27 @@ struct MeasureOp {
   double max_radius = 0.0;  ///< mm; 0 = unlimited
 };
 
+/// Sizes a patch to a target (docs/patch-design.md): for candidate widths in [width_min,
+/// width_max] it sews `patch` in, runs `simulate` and measures `measure`, each from the
+/// workspace as the op found it, and leaves the chosen candidate in the workspace as one
+/// undoable step, exactly as the three ops with the chosen width would.
+struct DesignPatchOp {
+  PatchOp patch;        ///< its width is what is chosen; min_edge_length > 0: width / 5
+  SimulateOp simulate;  ///< with `relax`
+  MeasureOp measure;    ///< a lumen profile along a centreline, on the patch's object
+  double width_min = 2.0, width_max = 8.0;  ///< mm, 0.5 <= min < max <= 50
+  enum class Target {
+    MinArea,           ///< the smallest lumen area along the centreline, mm^2
+    CoarctationIndex,  ///< the narrowest equivalent diameter / the distal end's
+  };
+  Target target = Target::MinArea;
+  double target_value = 0.0;
+  double tolerance = 0.05;  ///< a width is chosen when the quantity is in [T, T (1 + tolerance)]
+  /// Limit: the largest equivalent diameter along the centreline / the distal end's.
+  std::optional<double> max_bulge;
+  int max_relaxations = 8;  ///< candidates evaluated, 2 ... 50
+};
+
 /// Hausdorff distance between two objects' current shapes (engine::hausdorff_distance),
 /// recorded under `name` for `check` (a_to_b_mm, b_to_a_mm, symmetric_mm, ...).
 struct DistanceOp {
@@ -408,7 +429,7 @@ struct RedoOp {};
 using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ExportPatchTemplateOp, ReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
                         UnloadOp, SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
-                        RemeshOp, MeasureOp, DistanceOp, UndoOp, RedoOp>;
+                        RemeshOp, MeasureOp, DesignPatchOp, DistanceOp, UndoOp, RedoOp>;
 
 /// One parsed action with where it came from.
 struct Action {
