@@ -16,6 +16,7 @@
 #include "gui_command.hpp"
 #include "prepare_command.hpp"
 #include "sutura/app/blas_restart.hpp"
+#include "sutura/app/design_candidates.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session_runner.hpp"
@@ -129,6 +130,15 @@ int main(int argc, char** argv) {
                      "Compute threads (OpenMP and BLAS); default: one per core. 1 is faster where "
                      "other processes keep the cores busy; positions then differ in the last bits")
       ->check(CLI::Range(1, 1024));
+  std::string emit_candidates;
+  int candidate_count = 8;
+  replay->add_option("--emit-candidates", emit_candidates,
+                     "Run nothing: write each design_patch op's candidates into this directory as "
+                     "sessions of their own, for a cluster's job array (docs/patch-design.md)");
+  replay->add_option("--candidates", candidate_count,
+                     "With --emit-candidates: widths per design_patch op, evenly spaced over its range")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000));
   sutura::app::ReplayOptions replay_options;
   sutura::app::Limits& limits = replay_options.limits;
   replay->add_option("--time-limit", replay_options.time_limit,
@@ -182,6 +192,12 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*replay && !emit_candidates.empty()) {
+      const auto written = sutura::app::emit_design_candidates(sutura::app::load_session(session_file),
+                                                               emit_candidates, candidate_count);
+      for (const auto& c : written) std::cout << c.file.string() << "\t" << c.width << "\n";
+      return 0;
+    }
     if (*replay) {
       replay_options.out_dir = out_dir;
       replay_options.threads = threads;

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "replay_fixture.hpp"
+#include "sutura/app/design_candidates.hpp"
 #include "sutura/app/session.hpp"
 
 namespace {
@@ -130,6 +131,32 @@ TEST(DesignPatch, ReportsAnInfeasibleTargetWithTheBestCandidate) {
       design({{"min_area_mm2", 20.0}}, {2, 8}, {{"max_bulge", 1.0}}), sutura::testing::scratch_dir("design", "bulge"));
   EXPECT_EQ(design_action(b)["status"], "infeasible");
   EXPECT_NE(design_action(b)["reason"].get<std::string>().find("bulge"), std::string::npos);
+}
+
+// The candidates written for a job array replay to what design_patch measured for the same
+// widths (both ends of the range are always its first two candidates), bit for bit.
+TEST(DesignPatch, EmittedCandidatesReplayToTheOpsOwnCandidates) {
+  const fs::path dir = sutura::testing::scratch_dir("design", "emit");
+  const std::string text = design({{"min_area_mm2", 60.0}}, {2, 4});
+  const ReplayResult r = sutura::testing::replay_text(text, dir);
+  const json& d = design_action(r);
+  ASSERT_EQ(d["candidates"].size(), 2u);
+  const Session session = parse_session(text, dir / "plan.jsonl");
+  const auto written = emit_design_candidates(session, dir / "candidates", 2);
+  ASSERT_EQ(written.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(written[k].width, d["candidates"][k]["width_mm"].get<double>());
+    ReplayOptions o;
+    o.out_dir = dir / ("out" + std::to_string(k));
+    const ReplayResult c = replay(load_session(written[k].file), o);
+    EXPECT_EQ(c.report["measurements"]["lumen"]["after"]["min_area_mm2"].get<double>(),
+              d["candidates"][k]["min_area_mm2"].get<double>());
+  }
+  EXPECT_TRUE(fs::exists(dir / "candidates" / "plan_candidates.json"));
+  // Never over existing files; a session without the op has no candidates.
+  EXPECT_THROW((void)emit_design_candidates(session, dir / "candidates", 2), std::invalid_argument);
+  EXPECT_THROW((void)emit_design_candidates(parse_session(plan().prefix, dir / "p.jsonl"), dir / "none", 2),
+               std::invalid_argument);
 }
 
 std::string failure(const std::string& text) {
