@@ -41,6 +41,28 @@ double generated_faces(const GenerateOp& op) {
       op.params);
 }
 
+// A patch `width` mm wide: the incision is at least as long as its end points are apart; the
+// planner cuts no finer than edge_length when it is given.
+void check_patch(const Session& session, const Action& a, const PatchOp& p, double width, const char* field,
+                 const Limits& limits) {
+  const double h = p.params.edge_length;
+  const double length = p.params.length > 0 ? p.params.length : (p.end - p.start).norm();
+  if (h > 0) {
+    const double faces = 2.31 * length * width / (h * h);
+    if (faces > double(limits.faces_per_object))
+      refuse(session, a, field, "a patch of about ", faces, " faces", double(limits.faces_per_object),
+             "--max-faces");
+  }
+}
+
+void check_run(const Session& session, const Action& a, const SimulateOp& r, const std::string& prefix,
+               const Limits& limits) {
+  const double steps = r.relax ? double(r.relax->steps) + double(r.relax->settle_steps) : double(r.params.steps);
+  if (steps > double(limits.steps))
+    refuse(session, a, prefix + (r.relax ? "relax.steps" : "steps"), "a run of ", steps, " steps",
+           double(limits.steps), "--max-steps");
+}
+
 }  // namespace
 
 void check_limits(const Session& session, const Limits& limits) {
@@ -55,26 +77,18 @@ void check_limits(const Session& session, const Limits& limits) {
     } else if (const auto* l = std::get_if<LoadOp>(&a.op)) {
       objects.insert(l->object);
     } else if (const auto* p = std::get_if<PatchOp>(&a.op)) {
-      // The incision is at least as long as its end points are apart; the planner cuts no
-      // finer than edge_length when it is given.
-      const double h = p->params.edge_length;
-      const double length = p->params.length > 0 ? p->params.length : (p->end - p->start).norm();
-      if (h > 0) {
-        const double faces = 2.31 * length * p->params.width / (h * h);
-        if (faces > double(limits.faces_per_object))
-          refuse(session, a, "edge_length", "a patch of about ", faces, " faces", double(limits.faces_per_object),
-                 "--max-faces");
-      }
+      check_patch(session, a, *p, p->params.width, "edge_length", limits);
+    } else if (const auto* d = std::get_if<DesignPatchOp>(&a.op)) {
+      // Every candidate is a patch and a run: the widest patch, and each run's steps (the
+      // number of candidates is bounded by max_relaxations, their time by --time-limit).
+      check_patch(session, a, d->patch, d->width_max, "patch.edge_length", limits);
+      check_run(session, a, d->simulate, "simulate.", limits);
     } else if (const auto* shot = std::get_if<SnapshotOp>(&a.op)) {
       const double pixels = double(shot->width) * double(shot->height) * (shot->side_by_side ? 2.0 : 1.0);
       if (pixels > double(limits.pixels))
         refuse(session, a, "width", "a snapshot of ", pixels, " pixels", double(limits.pixels), "--max-pixels");
     } else if (const auto* r = std::get_if<SimulateOp>(&a.op)) {
-      const double steps = r->relax ? double(r->relax->steps) + double(r->relax->settle_steps)
-                                    : double(r->params.steps);
-      if (steps > double(limits.steps))
-        refuse(session, a, r->relax ? "relax.steps" : "steps", "a run of ", steps, " steps", double(limits.steps),
-               "--max-steps");
+      check_run(session, a, *r, "", limits);
     }
     if (objects.size() > limits.objects)
       refuse(session, a, "object", "", double(objects.size()), " objects", double(limits.objects), "--max-objects");

@@ -214,12 +214,17 @@ json patch_template_op(const Plan& plan, const std::string& object, std::size_t 
   if (patches == 0) throw std::invalid_argument("'" + object + "' has no patch: add one with the Patch tool.");
   for (std::size_t i = std::min(plan.applied, plan.steps.size()); i-- > 0;) {
     const json& a = plan.steps[i].source;
-    if (plan.steps[i].op == "patch" && a.value("object", std::string()) == object && a.contains("start"))
+    if (a.value("object", std::string()) != object) continue;
+    // A patch op, or a design_patch op whose part `patch` sewed the chosen one in.
+    const json* patch = plan.steps[i].op == "patch"          ? &a
+                        : plan.steps[i].op == "design_patch" && a.contains("patch") ? &a["patch"]
+                                                                                   : nullptr;
+    if (patch != nullptr && patch->is_object() && patch->contains("start"))
       return {{"op", "export_patch_template"},
               {"object", object},
               {"file", file},
               {"patch", patches},
-              {"proximal", a["start"]}};
+              {"proximal", (*patch)["start"]}};
   }
   throw std::invalid_argument("No patch step on '" + object +
                               "' in this plan, so the patch's proximal end is not known.");

@@ -36,14 +36,13 @@ std::vector<Vec2> offset_outwards(const std::vector<Vec2>& p, double d) {
     const Vec2& b = p[i];
     const Vec2& c = p[(i + 1) % n];
     const Vec2 n1 = outward(b - a), n2 = outward(c - b);
-    const double turn = (b - a).x() * (c - b).y() - (b - a).y() * (c - b).x();
-    if (turn > 0.0) {
+    // The turn from the incoming to the outgoing normal, in (-pi, pi]: > 0 at a convex corner.
+    const double sweep = std::atan2(n1.x() * n2.y() - n1.y() * n2.x(), n1.dot(n2));
+    if (sweep > 1e-9) {
       const double t1 = std::atan2(n1.y(), n1.x());
-      double t2 = std::atan2(n2.y(), n2.x());
-      while (t2 < t1) t2 += 2 * std::numbers::pi;
-      const int steps = std::max(1, static_cast<int>(std::ceil((t2 - t1) / (std::numbers::pi / 18))));
+      const int steps = std::max(1, static_cast<int>(std::ceil(sweep / (std::numbers::pi / 18))));
       for (int j = 0; j <= steps; ++j) {
-        const double t = t1 + (t2 - t1) * j / steps;
+        const double t = t1 + sweep * j / steps;
         out.push_back(b + d * Vec2(std::cos(t), std::sin(t)));
       }
     } else {
@@ -57,12 +56,24 @@ std::vector<Vec2> offset_outwards(const std::vector<Vec2>& p, double d) {
 }  // namespace
 
 std::vector<int> patch_materials(const SceneObject& obj) {
-  std::vector<bool> used(obj.sim.materials.size(), false);
-  for (int m : obj.sim.face_material)
-    if (m >= 0 && static_cast<std::size_t>(m) < used.size()) used[m] = true;
+  // A material is sewn in when one of its vertices also belongs to a face of another material
+  // (a suture merged them); a part added beside the object shares no vertex.
+  const std::size_t nm = obj.sim.materials.size();
+  std::vector<int> first(obj.mesh.num_vertices(), -1);  // the first material seen at a vertex
+  std::vector<bool> used(nm, false), sewn(nm, false);
+  for (std::size_t f = 0; f < obj.mesh.num_faces() && f < obj.sim.face_material.size(); ++f) {
+    const int m = obj.sim.face_material[f];
+    if (m < 0 || static_cast<std::size_t>(m) >= nm) continue;
+    used[m] = true;
+    for (engine::VertexId v : obj.mesh.face_vertices(engine::FaceId(f))) {
+      int& seen = first[v.index()];
+      if (seen < 0) seen = m;
+      else if (seen != m) sewn[m] = sewn[seen] = true;
+    }
+  }
   std::vector<int> out;
-  for (std::size_t m = 1; m < used.size(); ++m)
-    if (used[m]) out.push_back(static_cast<int>(m));
+  for (std::size_t m = 1; m < nm; ++m)
+    if (used[m] && sewn[m]) out.push_back(static_cast<int>(m));
   return out;
 }
 
@@ -76,8 +87,8 @@ PatchTemplate make_patch_template(const SceneObject& obj, const std::string& hea
                                 std::to_string(materials.size()) + " patch" +
                                 (materials.size() == 1 ? "" : "es") + "; there is no patch " +
                                 std::to_string(options.patch));
-  if (!(options.bite_spacing_mm > 0.0) || !(options.bite_spacing_mm <= 20.0))
-    throw std::invalid_argument("bite_spacing: must be > 0 and at most 20 mm");
+  if (!(options.bite_spacing_mm >= 0.1) || !(options.bite_spacing_mm <= 20.0))
+    throw std::invalid_argument("bite_spacing: must be in [0.1, 20] mm");
   if (!(options.seam_allowance_mm >= 0.0) || !(options.seam_allowance_mm <= 20.0))
     throw std::invalid_argument("seam_allowance: must be in [0, 20] mm");
   if (!options.proximal.allFinite()) throw std::invalid_argument("proximal: not a finite point");
@@ -150,7 +161,12 @@ PatchTemplate make_patch_template(const SceneObject& obj, const std::string& hea
   page.strokes.push_back(seam_line);
 
   // Bite marks across the seam, from its proximal vertex on, every bite_spacing of its length.
-  t.bites = static_cast<int>(std::floor(t.seam_length_mm / options.bite_spacing_mm + 1e-9));
+  // A seam is at most a few hundred mm (a patch is at most 50 mm wide): bounded, but checked.
+  const double bites = std::floor(t.seam_length_mm / options.bite_spacing_mm + 1e-9);
+  if (!(bites <= 100000.0))
+    throw std::invalid_argument("bite_spacing: " + std::to_string(bites) + " bite marks along a " +
+                                fixed(t.seam_length_mm, 1) + " mm seam; give a wider spacing");
+  t.bites = static_cast<int>(bites);
   std::size_t edge = 0;
   double edge_start = 0.0;
   for (int k = 0; k < t.bites; ++k) {

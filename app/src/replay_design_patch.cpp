@@ -16,6 +16,8 @@
 #include <sstream>
 
 #include "replay_run.hpp"
+#include "sutura/engine/atomic_file.hpp"
+#include "sutura/render/chart.hpp"
 
 namespace sutura::app::detail {
 
@@ -63,6 +65,12 @@ json Run::execute(const DesignPatchOp& op) {
   remember();                         // the whole design is one step of the undo history
   const std::size_t undo_depth = undo_stack.size();
   const json measurements_before = measurements;
+  // A candidate that fails or is stopped leaves the workspace as the op found it.
+  auto restore = [&] {
+    workspace = start;
+    measurements = measurements_before;
+    undo_stack.resize(undo_depth - 1);
+  };
   const bool area = op.target == DesignPatchOp::Target::MinArea;
   const std::string quantity = area ? "min_area_mm2" : "coarctation_index";
   const double low_end = op.target_value, high_end = op.target_value * (1.0 + op.tolerance);
@@ -71,7 +79,16 @@ json Run::execute(const DesignPatchOp& op) {
   std::deque<Candidate> candidates;  // evaluate() hands out references: they must stay valid
   auto value = [&](const Candidate& c) { return area ? c.min_area : c.coarctation_index; };
   auto within_limits = [&](const Candidate& c) { return !op.max_bulge || c.bulge <= *op.max_bulge; };
+  // Which workspaces are kept (a candidate's objects are full copies): the widest candidate's
+  // and the narrowest one's that meets the target within the limits, the only ones the
+  // search can still choose besides the one in the band, which ends it.
+  Candidate* widest = nullptr;
+  Candidate* best = nullptr;
   auto evaluate = [&](double width) -> const Candidate& {
+    if (past_deadline()) {
+      restore();
+      throw std::runtime_error("the time limit came before the candidate " + fixed(width, 3) + " mm wide");
+    }
     const auto t0 = std::chrono::steady_clock::now();
     workspace = start;
     PatchOp patch = op.patch;
@@ -81,9 +98,14 @@ json Run::execute(const DesignPatchOp& op) {
       execute(patch);
       execute(op.simulate);
       execute(op.measure);
+    } catch (const OpCancelled&) {
+      restore();
+      throw;
     } catch (const std::exception& e) {
+      restore();
       throw std::runtime_error("the candidate " + fixed(width, 3) + " mm wide failed: " + e.what());
     }
+    undo_stack.resize(undo_depth);
     Candidate c;
     c.width = width;
     c.measurement = measurements[op.measure.name];
@@ -91,7 +113,17 @@ json Run::execute(const DesignPatchOp& op) {
     c.after = workspace;
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     candidates.push_back(std::move(c));
-    return candidates.back();
+    Candidate& added = candidates.back();
+    Candidate* const previous_widest = widest;
+    Candidate* const previous_best = best;
+    if (widest == nullptr || added.width > widest->width) widest = &added;
+    if (value(added) >= low_end && within_limits(added) && (best == nullptr || added.width < best->width))
+      best = &added;
+    for (Candidate* old : {previous_widest, previous_best})
+      if (old != nullptr && old != widest && old != best) old->after = Workspace{};
+    if (&added != widest && &added != best && !(value(added) >= low_end && value(added) <= high_end))
+      added.after = Workspace{};
+    return added;
   };
 
   std::string status, reason;
@@ -114,7 +146,7 @@ json Run::execute(const DesignPatchOp& op) {
       double lo_w = op.width_min, lo_g = value(narrow) - aim;
       double hi_w = op.width_max, hi_g = value(wide) - aim;
       int kept = 0;  // +1: hi kept in a row, -1: lo kept
-      const Candidate* in_band = value(wide) <= high_end ? &candidates.back() : nullptr;
+      const Candidate* in_band = value(wide) <= high_end ? &wide : nullptr;
       while (in_band == nullptr && static_cast<int>(candidates.size()) < op.max_relaxations) {
         double w = lo_w - lo_g * (hi_w - lo_w) / (hi_g - lo_g);
         w = std::clamp(w, lo_w + 0.01 * (hi_w - lo_w), hi_w - 0.01 * (hi_w - lo_w));
@@ -137,13 +169,16 @@ json Run::execute(const DesignPatchOp& op) {
         reason = quantity + " " + fixed(value(*in_band), 3) + " is within [" + fixed(low_end, 3) + ", " +
                  fixed(high_end, 3) + "]" +
                  (within_limits(*in_band) ? "" : ", but the patch bulges beyond the limit: no width meets both");
-      } else {
-        // The narrowest candidate that meets the target, the band not reached in time.
-        for (const Candidate& c : candidates)
-          if (value(c) >= low_end && (chosen == nullptr || c.width < chosen->width)) chosen = &c;
+      } else if (best != nullptr) {
+        chosen = best;
         status = "not_within_tolerance";
         reason = "no candidate within [" + fixed(low_end, 3) + ", " + fixed(high_end, 3) + "] in " +
-                 std::to_string(candidates.size()) + " relaxations; the narrowest that meets the target is chosen";
+                 std::to_string(candidates.size()) +
+                 " relaxations; the narrowest that meets the target within the limits is chosen";
+      } else {
+        chosen = widest;
+        status = "infeasible";
+        reason = "every candidate that meets the target bulges beyond the limit; the widest is left";
       }
     }
   }
@@ -154,6 +189,33 @@ json Run::execute(const DesignPatchOp& op) {
   measurements[op.measure.name] = chosen->measurement;
   undo_stack.resize(undo_depth);
   redo_stack.clear();
+
+  if (!op.plot.empty()) {
+    render::Chart chart;
+    chart.title = std::string("design_patch: ") + (area ? "smallest lumen area" : "coarctation index") +
+                  " and bulge against the patch's width (" + status + ")";
+    chart.x_label = "patch width [mm]";
+    chart.y_label = area ? "smallest lumen area [mm2]" : "coarctation index";
+    chart.y2_label = "bulge (widest / distal diameter)";
+    std::vector<const Candidate*> by_width;
+    for (const Candidate& c : candidates) by_width.push_back(&c);
+    std::sort(by_width.begin(), by_width.end(), [](const Candidate* a, const Candidate* b) { return a->width < b->width; });
+    render::ChartSeries lumen, bulge;
+    lumen.label = area ? "smallest lumen area" : "coarctation index";
+    bulge.label = "bulge";
+    bulge.color = {214, 39, 40, 255};
+    bulge.right_axis = true;
+    for (const Candidate* c : by_width) {
+      lumen.points.push_back({c->width, value(*c)});
+      bulge.points.push_back({c->width, c->bulge});
+    }
+    chart.series = {lumen, bulge};
+    chart.bands.push_back({low_end, high_end, false, {200, 232, 200, 255}});
+    if (op.max_bulge) chart.bands.push_back({*op.max_bulge, *op.max_bulge, true, {214, 39, 40, 255}});
+    chart.markers.push_back({chosen->width, "chosen " + fixed(chosen->width, 2) + " mm"});
+    const std::vector<std::uint8_t> png = render::encode_png(render::draw_chart(chart));
+    engine::write_file_atomically(output(op.plot), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  }
 
   json list = json::array();
   for (const Candidate& c : candidates)
@@ -173,6 +235,7 @@ json Run::execute(const DesignPatchOp& op) {
             {"candidates", list},
             {"measurement", op.measure.name}};
   if (op.max_bulge) j["max_bulge"] = *op.max_bulge;
+  if (!op.plot.empty()) j["plot"] = op.plot.generic_string();
   j["summary"] = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +
                  fixed(value(*chosen), 3) + " (" + reason + ")";
   return j;

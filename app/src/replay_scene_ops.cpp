@@ -2,6 +2,7 @@
 // report) and the report.
 #include "replay_run.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 
@@ -280,8 +281,9 @@ json Run::execute(const ExportPatchTemplateOp& op) {
   const std::string heading = "Sutura cutting template: " + session.file.filename().string() +
                               ", object '" + op.object + "', patch " + std::to_string(op.patch);
   const PatchTemplate t = make_patch_template(object(op.object), heading, options);
-  const std::string bytes =
-      op.file.extension() == ".pdf" ? render::to_pdf(t.page) : render::to_svg(t.page);
+  std::string extension = op.file.extension().string();  // the parser took .svg or .pdf, any case
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string bytes = extension == ".pdf" ? render::to_pdf(t.page) : render::to_svg(t.page);
   engine::write_file_atomically(output(op.file), bytes);
   return {{"object", op.object},
           {"file", op.file.generic_string()},

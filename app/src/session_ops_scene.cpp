@@ -166,7 +166,7 @@ ExportPatchTemplateOp parse_export_patch_template(Fields& f) {
   op.patch = f.optional_int("patch", 1, 1, 1000);
   op.proximal = vec(f.required_vec3("proximal"));
   op.bite_spacing = f.optional_positive("bite_spacing", op.bite_spacing);
-  if (op.bite_spacing > 20.0) f.fail("bite_spacing", "must be at most 20 mm");
+  if (!(op.bite_spacing >= 0.1 && op.bite_spacing <= 20.0)) f.fail("bite_spacing", "must be in [0.1, 20] mm");
   op.seam_allowance = f.optional_number("seam_allowance", op.seam_allowance);
   if (!(op.seam_allowance >= 0.0 && op.seam_allowance <= 20.0))
     f.fail("seam_allowance", "must be in [0, 20] mm");

@@ -250,6 +250,7 @@ DesignPatchOp parse_design_patch(Fields& f) {
     if (*op.max_bulge < 1.0) f.fail("max_bulge", "must be >= 1 (a ratio of diameters)");
   }
   op.max_relaxations = f.optional_int("max_relaxations", op.max_relaxations, 2, 50);
+  if (f.has("plot")) op.plot = output_file(f, "plot", {".png"});
   return op;
 }
 

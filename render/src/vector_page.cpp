@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <system_error>
 #include <stdexcept>
 
 namespace sutura::render {
@@ -16,6 +17,7 @@ std::string num(double v, int decimals = 4) {
   if (std::abs(v) < 0.5 * std::pow(10.0, -decimals)) v = 0.0;  // no "-0"
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
+  if (r.ec != std::errc()) throw std::invalid_argument("vector page: a coordinate is too large");
   std::string s(buf, r.ptr);
   if (s.find('.') != std::string::npos) {
     while (s.back() == '0') s.pop_back();

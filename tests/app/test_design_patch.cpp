@@ -159,6 +159,43 @@ TEST(DesignPatch, EmittedCandidatesReplayToTheOpsOwnCandidates) {
                std::invalid_argument);
 }
 
+// The narrowest patch already meets the target: one relaxation. Too few relaxations for the
+// band: the narrowest candidate that meets the target, said so.
+TEST(DesignPatch, TheNarrowestThatMeetsAndTheBandNotReached) {
+  const ReplayResult r = sutura::testing::replay_text(design({{"min_area_mm2", 5.0}}, {2, 8}),
+                                                     sutura::testing::scratch_dir("design", "narrowest"));
+  EXPECT_EQ(design_action(r)["status"], "met");
+  EXPECT_EQ(design_action(r)["width_mm"].get<double>(), 2.0);
+  EXPECT_EQ(design_action(r)["relaxations"].get<int>(), 1);
+  const ReplayResult t = sutura::testing::replay_text(
+      design({{"min_area_mm2", 20.0}}, {2, 8}, {{"tolerance", 0.01}, {"max_relaxations", 2}}),
+      sutura::testing::scratch_dir("design", "tolerance"));
+  const json& d = design_action(t);
+  EXPECT_EQ(d["status"], "not_within_tolerance");
+  EXPECT_EQ(d["width_mm"].get<double>(), 8.0);
+  EXPECT_EQ(d["relaxations"].get<int>(), 2);
+}
+
+// A candidate that fails (its measure finds no vessel) fails the op and leaves the workspace
+// as the op found it: the report's shape is the incised aorta's.
+TEST(DesignPatch, AFailedCandidateLeavesTheWorkspaceAsItWas) {
+  json measure = without(plan().measure, {"op", "object"});
+  measure["centreline"] = {{100, 100, 100}, {101, 100, 100}};
+  const fs::path dir = sutura::testing::scratch_dir("design", "fails");
+  std::string error;
+  try {
+    (void)sutura::testing::replay_text(design({{"min_area_mm2", 20.0}}, {2, 8}, {{"measure", measure}}), dir);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("the candidate 2.000 mm wide failed"), std::string::npos) << error;
+  std::ifstream in(dir / "out" / "report.json");
+  const json report = json::parse(in);
+  EXPECT_EQ(report["status"], "failed");
+  const ReplayResult incised = sutura::testing::replay_text(plan().prefix, sutura::testing::scratch_dir("design", "incised2"));
+  EXPECT_EQ(report["objects"]["aorta"]["position_hash"], hash(incised));
+}
+
 std::string failure(const std::string& text) {
   try {
     (void)parse_session(text, "s.jsonl");

@@ -150,4 +150,8 @@ TEST(OpBuilders, TheCuttingTemplateIsOfTheLastPatchWithItsStartProximal) {
     EXPECT_NE(std::string(e.what()).find("has no patch"), std::string::npos);
   }
   EXPECT_THROW((void)patch_template_op(plan, "c", 1, "t.pdf"), std::invalid_argument);
+  // A designed patch: its part `patch` has the start.
+  plan.steps.push_back({6, "design_patch", {{"op", "design_patch"}, {"object", "c"}, {"patch", {{"start", {3, 2, 1}}}}}, {}});
+  plan.applied = 4;
+  EXPECT_EQ(patch_template_op(plan, "c", 1, "t.pdf")["proximal"], nlohmann::json({3, 2, 1}));
 }

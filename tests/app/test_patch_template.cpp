@@ -193,6 +193,32 @@ TEST(PatchTemplate, BadRequestsNameTheField) {
   EXPECT_NE(e.find("bite_spacing"), std::string::npos) << e;
   e = failure(kHeader + tube + op("\"file\": \"c.svg\", \"proximal\": [4, 0, 10], \"bite_spacing\": 25"), "bite2");
   EXPECT_NE(e.find("bite_spacing"), std::string::npos) << e;
+  e = failure(kHeader + tube + op("\"file\": \"c.svg\", \"proximal\": [4, 0, 10], \"bite_spacing\": 1e-300"), "bite3");
+  EXPECT_NE(e.find("bite_spacing"), std::string::npos) << e;
+}
+
+// A part added beside the object (not sewn in) is not a patch; an upper-case .PDF is a PDF.
+TEST(PatchTemplate, OnlySewnInPartsArePatches) {
+  const std::string strip =
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"strip\", \"append\": true, "
+      "\"length\": 10, \"width\": 3}\n";
+  const std::string tube =
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 30}\n";
+  const std::string e = failure(kHeader + tube + strip +
+                                    "{\"op\": \"export_patch_template\", \"object\": \"t\", \"file\": \"c.svg\", "
+                                    "\"proximal\": [4, 0, 10]}\n",
+                                "strip");
+  EXPECT_NE(e.find("has no patch"), std::string::npos) << e;
+  const fs::path dir = sutura::testing::scratch_dir("template", "strip_and_patch");
+  const ReplayResult r = sutura::testing::replay_text(
+      kHeader + kPatchedTube + strip +
+          "{\"op\": \"export_patch_template\", \"object\": \"t\", \"file\": \"c.PDF\", \"proximal\": [4, 0, 10]}\n",
+      dir);
+  const json& a = r.report["actions"].back();
+  EXPECT_NEAR(a["seam_length_mm"].get<double>(),
+              exported().result.report["actions"][exported().result.report["actions"].size() - 2]["seam_length_mm"].get<double>(),
+              1e-9);
+  EXPECT_EQ(read(dir / "out" / "c.PDF").rfind("%PDF-1.4", 0), 0u);
 }
 
 }  // namespace

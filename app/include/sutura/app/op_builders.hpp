@@ -110,7 +110,8 @@ nlohmann::json snapshot_op(const std::string& file, const SnapshotView& view, bo
 nlohmann::json export_op(const std::string& object, const std::string& file);
 /// The cutting template of the patch sewn into `object` last (`patches`: how many patches the
 /// object has, patch_template.hpp's patch_materials): that patch's number, and as `proximal`
-/// the `start` of the last applied `patch` op on the object in `plan`. Throws
+/// the `start` of the last applied `patch` op (or `design_patch` op's `patch`) on the object
+/// in `plan`. Throws
 /// std::invalid_argument with the reason, in words for the window, when the object has no
 /// patch or the plan holds no applied patch op on it.
 nlohmann::json patch_template_op(const Plan& plan, const std::string& object, std::size_t patches,

@@ -17,8 +17,9 @@
 namespace sutura::app {
 
 struct PatchTemplateOptions {
-  /// 1-based: the patches of an object are its materials after the first (the wall), in the
-  /// order they were sewn in, that still have faces.
+  /// 1-based: the patches of an object are its materials after the first (the wall) that are
+  /// sewn in (a vertex shared with a face of another material), in the order they were made;
+  /// a part added beside the object (generate with append) is not one.
   int patch = 1;
   /// A point near the patch's proximal end, in the current shape (mm): the seam vertex
   /// nearest to it is the top of the template and the first bite mark.
@@ -41,13 +42,14 @@ struct PatchTemplate {
   std::size_t faces = 0;
 };
 
-/// The material indices (into obj.sim.materials) of the object's patches, in order.
+/// The material indices (into obj.sim.materials) of the object's patches, in order. O(F).
 std::vector<int> patch_materials(const SceneObject& obj);
 
-/// The template of patch `options.patch` of `obj`. Throws std::invalid_argument naming the
-/// problem: no patch, a patch number out of range, a bite spacing <= 0 or a seam allowance
-/// < 0 (or either above 20 mm), a non-finite proximal point, a patch whose faces are not one
-/// disk (engine::unfold_rest's errors). Cost O(F) plus the unfolding's O(F_patch log F_patch).
+/// The template of patch `options.patch` of `obj`; its long axis is upright with the seam
+/// vertex nearest `options.proximal` on the upper side. Throws std::invalid_argument naming
+/// the problem: no patch, a patch number out of range, a bite spacing outside [0.1, 20] mm, a
+/// seam allowance outside [0, 20] mm, a non-finite proximal point; engine::InvalidArgument
+/// for a patch whose faces are not one disk (engine::unfold_rest). Cost O(V + F).
 PatchTemplate make_patch_template(const SceneObject& obj, const std::string& heading,
                                   const PatchTemplateOptions& options);
 

@@ -412,6 +412,9 @@ struct DesignPatchOp {
   /// Limit: the largest equivalent diameter along the centreline / the distal end's.
   std::optional<double> max_bulge;
   int max_relaxations = 8;  ///< candidates evaluated, 2 ... 50
+  /// A PNG plot of the quantity and the bulge against the width, in the output directory
+  /// (empty: none).
+  std::filesystem::path plot;
 };
 
 /// Hausdorff distance between two objects' current shapes (engine::hausdorff_distance),

@@ -25,7 +25,8 @@ struct FlatLayout {
   /// The region's one boundary loop, counter-clockwise (region on its left), starting at its
   /// smallest vertex id: the seam of a sewn-in patch.
   std::vector<VertexId> outline;
-  /// Largest distance between where two region faces put one shared vertex, mm.
+  /// Largest distance between where a region face puts a vertex and `position` (where the
+  /// first face laid out put it), mm; two faces can disagree by up to twice this.
   double max_gap_mm = 0.0;
   double rest_area_mm2 = 0.0;       ///< sum of the region faces' rest areas
   double rest_perimeter_mm = 0.0;   ///< sum of the outline edges' rest lengths (their faces')
@@ -37,7 +38,8 @@ struct FlatLayout {
 /// its copy of the shared edge has the same midpoint and direction as the one laid out.
 /// Deterministic. Throws InvalidArgument when the region is empty, has a face out of range,
 /// a degenerate rest triangle, is not edge-connected, or its boundary is not exactly one loop
-/// (a patch is a disk). Cost O(F log F) in the region's faces, plus O(V) for `position`.
+/// (a patch is a disk). Cost O(V + F) for the mesh's arrays, plus O(F_r log F_r) in the
+/// region's faces.
 FlatLayout unfold_rest(const SurfaceMesh& mesh, const RestState& rest,
                        const std::vector<FaceId>& region);
 
