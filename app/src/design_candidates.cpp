@@ -44,12 +44,15 @@ std::vector<DesignCandidate> emit_design_candidates(const Session& session, cons
     const std::string object = src.at("object").get<std::string>();
     json simulate = src.at("simulate");
     simulate["op"] = "simulate";
-    if (!simulate.contains("objects")) simulate["objects"] = json::array({object});
+    if (!simulate.contains("objects") || simulate["objects"] == json::array())  // as design_patch reads it
+      simulate["objects"] = json::array({object});
     json measure = src.at("measure");
     measure["op"] = "measure";
     measure["object"] = object;
     for (int k = 0; k < count; ++k) {
-      const double width = op->width_min + (op->width_max - op->width_min) * k / (count - 1);
+      // The ends exactly: they are design_patch's own first two candidates.
+      const double width = k == count - 1 ? op->width_max
+                                          : op->width_min + (op->width_max - op->width_min) * k / (count - 1);
       json patch = src.at("patch");
       patch["op"] = "patch";
       patch["object"] = object;

@@ -195,6 +195,7 @@ int main(int argc, char** argv) {
     if (*replay && !emit_candidates.empty()) {
       const auto written = sutura::app::emit_design_candidates(sutura::app::load_session(session_file),
                                                                emit_candidates, candidate_count);
+      std::cout.precision(17);
       for (const auto& c : written) std::cout << c.file.string() << "\t" << c.width << "\n";
       return 0;
     }

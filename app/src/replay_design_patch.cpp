@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#include <filesystem>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -61,7 +62,9 @@ std::string fixed(double v, int decimals) {
 }  // namespace
 
 json Run::execute(const DesignPatchOp& op) {
+  const std::filesystem::path plot = op.plot.empty() ? op.plot : output(op.plot);  // refused before any run
   const Workspace start = workspace;  // shares the objects; each candidate starts from it
+  const std::vector<Workspace> redo_before = redo_stack;
   remember();                         // the whole design is one step of the undo history
   const std::size_t undo_depth = undo_stack.size();
   const json measurements_before = measurements;
@@ -70,6 +73,7 @@ json Run::execute(const DesignPatchOp& op) {
     workspace = start;
     measurements = measurements_before;
     undo_stack.resize(undo_depth - 1);
+    redo_stack = redo_before;
   };
   const bool area = op.target == DesignPatchOp::Target::MinArea;
   const std::string quantity = area ? "min_area_mm2" : "coarctation_index";
@@ -183,17 +187,10 @@ json Run::execute(const DesignPatchOp& op) {
     }
   }
 
-  // The chosen candidate's workspace and measurement, as a plain replay of its three ops.
-  workspace = chosen->after;
-  measurements = measurements_before;
-  measurements[op.measure.name] = chosen->measurement;
-  undo_stack.resize(undo_depth);
-  redo_stack.clear();
-
-  if (!op.plot.empty()) {
+  if (!plot.empty()) {
     render::Chart chart;
-    chart.title = std::string("design_patch: ") + (area ? "smallest lumen area" : "coarctation index") +
-                  " and bulge against the patch's width (" + status + ")";
+    chart.title = std::string(area ? "Smallest lumen area" : "Coarctation index") +
+                  " and bulge against the width: " + status;
     chart.x_label = "patch width [mm]";
     chart.y_label = area ? "smallest lumen area [mm2]" : "coarctation index";
     chart.y2_label = "bulge (widest / distal diameter)";
@@ -213,9 +210,22 @@ json Run::execute(const DesignPatchOp& op) {
     chart.bands.push_back({low_end, high_end, false, {200, 232, 200, 255}});
     if (op.max_bulge) chart.bands.push_back({*op.max_bulge, *op.max_bulge, true, {214, 39, 40, 255}});
     chart.markers.push_back({chosen->width, "chosen " + fixed(chosen->width, 2) + " mm"});
-    const std::vector<std::uint8_t> png = render::encode_png(render::draw_chart(chart));
-    engine::write_file_atomically(output(op.plot), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    try {
+      const std::vector<std::uint8_t> png = render::encode_png(render::draw_chart(chart));
+      engine::write_file_atomically(plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    } catch (...) {
+      restore();
+      throw;
+    }
   }
+
+  // The chosen candidate's workspace and measurement, as a plain replay of its three ops.
+  workspace = chosen->after;
+  measurements = measurements_before;
+  measurements[op.measure.name] = chosen->measurement;
+  undo_stack.resize(undo_depth);
+  redo_stack.clear();
+
 
   json list = json::array();
   for (const Candidate& c : candidates)

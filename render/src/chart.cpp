@@ -25,10 +25,12 @@ struct Range {
     hi = std::max(hi, v);
   }
   [[nodiscard]] bool empty() const { return !(lo <= hi); }
-  // 5 % to spare each side; a single value gets a unit around it.
+  // 5 % to spare each side, and at least 1e-6 of the values' size (a single value, or values
+  // a few ulps apart, get a range the ticks can step through).
   void pad() {
-    const double span = hi - lo;
-    const double margin = span > 0 ? 0.05 * span : std::max(1.0, std::abs(lo) * 0.05);
+    if (!std::isfinite(hi - lo)) throw std::invalid_argument("chart: the values span more than a double holds");
+    const double floor = 1e-6 * std::max({1.0, std::abs(lo), std::abs(hi)});
+    const double margin = std::max(0.05 * (hi - lo), floor);
     lo -= margin;
     hi += margin;
   }
@@ -110,8 +112,15 @@ Image draw_chart(const Chart& chart) {
   for (const ChartBand& b : chart.bands)
     fill(im, px0, static_cast<int>(std::lround(Y(b.high, b.right_axis))), px1,
          static_cast<int>(std::lround(Y(b.low, b.right_axis))) + 1, b.color);
+  // Tick k is at k * step for k over the range (at most about 12 of them by tick_step).
+  auto ticks = [](const Range& r, double step) {
+    std::vector<double> out;
+    for (double k = std::ceil(r.lo / step); k <= std::floor(r.hi / step) && out.size() < 64; k += 1.0)
+      out.push_back(k * step);
+    return out;
+  };
   const double xs = tick_step(xr, 6);
-  for (double t = std::ceil(xr.lo / xs) * xs; t <= xr.hi + 1e-9 * xs; t += xs) {
+  for (double t : ticks(xr, xs)) {
     const int x = static_cast<int>(std::lround(X(t)));
     fill(im, x, py0, x + 1, py1, kGrid);
     const std::string s = tick_text(t, xs);
@@ -120,7 +129,7 @@ Image draw_chart(const Chart& chart) {
   for (int side = 0; side < 2; ++side) {
     if (yr[side].empty()) continue;
     const double ys = tick_step(yr[side], 5);
-    for (double t = std::ceil(yr[side].lo / ys) * ys; t <= yr[side].hi + 1e-9 * ys; t += ys) {
+    for (double t : ticks(yr[side], ys)) {
       const int y = static_cast<int>(std::lround(Y(t, side == 1)));
       if (side == 0) fill(im, px0, y, px1, y + 1, kGrid);
       const std::string s = tick_text(t, ys);

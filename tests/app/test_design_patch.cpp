@@ -153,6 +153,19 @@ TEST(DesignPatch, EmittedCandidatesReplayToTheOpsOwnCandidates) {
               d["candidates"][k]["min_area_mm2"].get<double>());
   }
   EXPECT_TRUE(fs::exists(dir / "candidates" / "plan_candidates.json"));
+  // The widest is width_max exactly (0.5 + 2.8 * 3 / 3 is not), and an empty objects list
+  // means the object, as design_patch reads it.
+  json simulate = without(plan().simulate, {"op"});
+  simulate["objects"] = json::array();
+  const auto grid = emit_design_candidates(
+      parse_session(design({{"min_area_mm2", 20.0}}, {0.5, 3.3}, {{"simulate", simulate}}), dir / "grid.jsonl"),
+      dir / "grid", 4);
+  ASSERT_EQ(grid.size(), 4u);
+  EXPECT_EQ(grid.front().width, 0.5);
+  EXPECT_EQ(grid.back().width, 3.3);
+  std::ifstream in(grid.back().file);
+  const std::string last((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(last.find("\"objects\":[\"aorta\"]"), std::string::npos);
   // Never over existing files; a session without the op has no candidates.
   EXPECT_THROW((void)emit_design_candidates(session, dir / "candidates", 2), std::invalid_argument);
   EXPECT_THROW((void)emit_design_candidates(parse_session(plan().prefix, dir / "p.jsonl"), dir / "none", 2),

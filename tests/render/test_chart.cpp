@@ -50,6 +50,18 @@ TEST(Chart, ASecondAxisScalesItsOwnSeries) {
   EXPECT_EQ(im.pixel(300, 304), (Rgba{20, 20, 200, 255}));
 }
 
+// Values a few ulps apart, or all equal, still get axes to step through (no endless ticks).
+TEST(Chart, NearlyEqualValuesGetARange) {
+  Chart c = diagonal();
+  c.bands.clear();
+  c.series[0].points = {{0.0, 1.0}, {1.0, std::nextafter(1.0, 2.0)}};
+  EXPECT_EQ(draw_chart(c).width, 960);
+  c.series[0].points = {{3.0, 5.0}, {3.0, 5.0}};
+  EXPECT_EQ(draw_chart(c).width, 960);
+  c.series[0].points = {{0.0, -1e308}, {1.0, 1e308}};
+  EXPECT_THROW((void)draw_chart(c), std::invalid_argument);
+}
+
 TEST(Chart, RefusesBadCharts) {
   Chart c = diagonal();
   c.width = 100;
