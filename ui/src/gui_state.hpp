@@ -224,6 +224,13 @@ struct GuiState {
   std::string patch_preview_error;
   std::string patch_preview_key;
   std::uint64_t patch_preview_revision = 0;
+  /// Inspect's cutting-template op for the selected object and template_file (template_key)
+  /// at template_revision, or why there is none (template_why): recomputed only when those
+  /// change, not every frame (it copies the plan and scans the object's faces).
+  nlohmann::json template_op;
+  std::optional<std::string> template_why;
+  std::string template_key;
+  std::uint64_t template_revision = ~std::uint64_t(0);
   /// The Resect tool's preview for (resect_preview_key): recomputed only when that changes.
   app::ResectPreview resect_preview;
   std::string resect_preview_key;

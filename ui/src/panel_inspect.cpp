@@ -216,20 +216,26 @@ void inspect_section(GuiState& s) {
   ImGui::InputText("template file", s.template_file, sizeof s.template_file);
   // The cutting template of the selected object's last patch, proximal at its start.
   std::optional<std::string> no_template = s.why_not(Command::ExportMesh);
-  nlohmann::json template_op;
   if (!no_template && !s.selected()) no_template = "Select the object the patch is sewn into.";
   if (!no_template) {
-    try {
-      template_op = app::patch_template_op(s.controller.plan(), s.selected()->name,
-                                           app::patch_materials(*s.selected()).size(), s.template_file);
-    } catch (const std::invalid_argument& e) {
-      no_template = e.what();
+    const std::string key = s.selected()->name + '\n' + s.template_file;
+    if (key != s.template_key || s.template_revision != s.controller.revision()) {
+      s.template_key = key;
+      s.template_revision = s.controller.revision();
+      s.template_why.reset();
+      try {
+        s.template_op = app::patch_template_op(s.controller.plan(), s.selected()->name,
+                                               app::patch_materials(*s.selected()).size(), s.template_file);
+      } catch (const std::invalid_argument& e) {
+        s.template_why = e.what();
+      }
     }
+    no_template = s.template_why;
   }
   if (gated_button(s.widgets, "Save cutting template", no_template,
                    "The last patch as cut from the sheet, at 1:1 (.pdf or .svg): print at 100 % "
                    "and check its 10 mm bar (docs/patch-design.md)."))
-    s.perform(template_op, "Saved the cutting template to " +
+    s.perform(s.template_op, "Saved the cutting template to " +
                                (s.controller.options().out_dir / s.template_file).string());
   ImGui::Separator();
   if (gated_button(s.widgets, "Continue planning", s.why_not(Command::ContinuePlanning),
