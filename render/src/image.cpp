@@ -123,6 +123,24 @@ std::vector<std::uint8_t> encode_png(const Image& image) {
   return png;
 }
 
+std::string png_data_uri(const Image& image) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::vector<std::uint8_t> png = encode_png(image);
+  std::string uri = "data:image/png;base64,";
+  uri.reserve(uri.size() + (png.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < png.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, png.size() - i);
+    std::uint32_t v = std::uint32_t(png[i]) << 16;
+    if (n > 1) v |= std::uint32_t(png[i + 1]) << 8;
+    if (n > 2) v |= png[i + 2];
+    uri += kDigits[(v >> 18) & 63];
+    uri += kDigits[(v >> 12) & 63];
+    uri += n > 1 ? kDigits[(v >> 6) & 63] : '=';
+    uri += n > 2 ? kDigits[v & 63] : '=';
+  }
+  return uri;
+}
+
 Image decode_png(const std::vector<std::uint8_t>& bytes) {
   if (bytes.empty() || bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw std::runtime_error("decode_png: no PNG data");

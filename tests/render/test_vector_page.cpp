@@ -2,10 +2,17 @@
 #include "sutura/render/vector_page.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+
+#include "sutura/render/image.hpp"
+
+// Debian's libstb exports stb_image's inflate; the header declares it only inside its
+// implementation section.
+extern "C" char* stbi_zlib_decode_malloc(const char* buffer, int len, int* outlen);
 
 namespace sutura::render {
 namespace {
@@ -83,6 +90,87 @@ TEST(VectorPage, PdfIsAtTrueScaleAndWellFormed) {
   EXPECT_EQ(pdf, to_pdf(scale_bar_page())) << "deterministic";
 }
 
+Image two_by_two() {
+  Image im(2, 2);
+  im.set_pixel(0, 0, {255, 0, 0, 255});
+  im.set_pixel(1, 0, {0, 255, 0, 255});
+  im.set_pixel(0, 1, {0, 0, 255, 255});
+  im.set_pixel(1, 1, {10, 20, 30, 128});  // alpha is ignored
+  return im;
+}
+
+// Base64 digits back to bytes (test-only inverse of png_data_uri's encoding).
+std::vector<std::uint8_t> from_base64(const std::string& text) {
+  const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<std::uint8_t> out;
+  std::uint32_t v = 0;
+  int bits = 0;
+  for (char c : text) {
+    if (c == '=') break;
+    const std::size_t d = digits.find(c);
+    if (d == std::string::npos) throw std::runtime_error("not base64");
+    v = (v << 6) | static_cast<std::uint32_t>(d);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<std::uint8_t>((v >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+TEST(VectorPage, DataUriHoldsThePng) {
+  const Image im = two_by_two();
+  const std::string uri = png_data_uri(im);
+  ASSERT_EQ(uri.rfind("data:image/png;base64,", 0), 0u);
+  const std::string digits = uri.substr(22);
+  EXPECT_EQ(digits.size() % 4, 0u) << "padded";
+  EXPECT_EQ(from_base64(digits), encode_png(im));
+}
+
+// Several pages, pictures on the second: the page tree counts them, each page has its own
+// content, and a picture is drawn into its rectangle (first row at the top) from deflated RGB
+// bytes that inflate back to the image's.
+TEST(VectorPage, PdfPagesWithPictures) {
+  VectorPage a = scale_bar_page(), b;
+  b.width_mm = 100.0;
+  b.height_mm = 50.0;
+  b.images.push_back({{20.0, 30.0}, 10.0, 5.0, two_by_two()});
+  const std::vector<VectorPage> pages = {a, b};
+  const std::string pdf = to_pdf(pages, "two pages");
+  EXPECT_NE(pdf.find("<< /Type /Pages /Kids [5 0 R 7 0 R] /Count 2 >>"), std::string::npos) << pdf.substr(0, 400);
+  EXPECT_NE(pdf.find("/Title (two pages)"), std::string::npos);
+  EXPECT_NE(pdf.find("/XObject << /Im1 9 0 R >>"), std::string::npos);
+  EXPECT_NE(pdf.find("q 10 0 0 -5 20 35 cm /Im1 Do Q\n"), std::string::npos);
+  const std::size_t head = pdf.find("/Subtype /Image /Width 2 /Height 2 /ColorSpace /DeviceRGB");
+  ASSERT_NE(head, std::string::npos);
+  const std::size_t at = pdf.find("/Length ", head);
+  const std::size_t length = std::stoul(pdf.substr(at + 8));
+  const std::size_t begin = pdf.find("stream\n", at) + 7;
+  int n = 0;
+  char* raw = stbi_zlib_decode_malloc(pdf.data() + begin, static_cast<int>(length), &n);
+  ASSERT_NE(raw, nullptr);
+  const std::string rgb(raw, static_cast<std::size_t>(n));
+  std::free(raw);
+  EXPECT_EQ(rgb, std::string("\xFF\x00\x00\x00\xFF\x00\x00\x00\xFF\x0A\x14\x1E", 12));
+  EXPECT_EQ(pdf, to_pdf(pages, "two pages")) << "deterministic";
+  EXPECT_THROW((void)to_pdf(std::vector<VectorPage>{}, "none"), std::invalid_argument);
+}
+
+TEST(VectorPage, SvgPictureIsADataUri) {
+  VectorPage p;
+  p.images.push_back({{1.0, 2.0}, 30.0, 15.0, two_by_two()});
+  const std::string svg = to_svg(p);
+  EXPECT_NE(svg.find("<image x=\"1\" y=\"2\" width=\"30\" height=\"15\" preserveAspectRatio=\"none\" href=\"" +
+                     png_data_uri(two_by_two()) + "\"/>"),
+            std::string::npos);
+}
+
+TEST(VectorPage, TextWidthIsHelvetica) {
+  // "10 mm": 556 + 556 + 278 + 833 + 833 = 3056/1000 em.
+  EXPECT_DOUBLE_EQ(text_width_mm("10 mm", 3.0), 3.0 * 3.056);
+}
+
 TEST(VectorPage, RefusesBadPages) {
   VectorPage p = scale_bar_page();
   p.width_mm = 0;
@@ -95,6 +183,12 @@ TEST(VectorPage, RefusesBadPages) {
   EXPECT_THROW((void)to_pdf(p), std::invalid_argument);
   p = scale_bar_page();
   p.strokes[1].dash_mm = {1.0, 0.0};
+  EXPECT_THROW((void)to_svg(p), std::invalid_argument);
+  p = scale_bar_page();
+  p.images.push_back({{0.0, 0.0}, 0.0, 5.0, two_by_two()});
+  EXPECT_THROW((void)to_pdf(p), std::invalid_argument);
+  p.images.back().width_mm = 5.0;
+  p.images.back().image = Image();
   EXPECT_THROW((void)to_svg(p), std::invalid_argument);
 }
 

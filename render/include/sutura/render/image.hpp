@@ -29,6 +29,10 @@ struct Image {
 /// stb_image_write with the Sub row filter at compression level 5 (set once, process-wide,
 /// in stb's globals). Cost: about 0.1 s for a 1920x1080 render, as much as rendering it.
 std::vector<std::uint8_t> encode_png(const Image& image);
+/// "data:image/png;base64,..." of encode_png(image) (RFC 4648 base64 with padding): a picture
+/// inside an HTML or SVG file. Same errors as encode_png.
+std::string png_data_uri(const Image& image);
+
 /// Decodes PNG bytes (tests and tools); throws std::runtime_error on malformed data.
 Image decode_png(const std::vector<std::uint8_t>& bytes);
 
