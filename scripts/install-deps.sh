@@ -22,6 +22,8 @@ PACKAGES=(
   libbenchmark-dev
   xvfb xauth xdotool x11-utils
   poppler-utils
+  nettle-dev
+  libxml2-dev
 )
 case "${1:-}" in
   "") ;;

@@ -1,5 +1,6 @@
 // sutura — command-line entry point. Subcommands:
 //   replay SESSION --out DIR   run a recorded planning session headlessly
+//   report SESSION --out DIR   replay it and write its plan report (HTML and PDF)
 //   info MESH                  load a mesh file and print its topology summary
 //   distance A B               Hausdorff distance between two mesh files
 //   generate arch --out DIR    write the synthetic infant aortic arch and its landmarks
@@ -25,9 +26,12 @@
 
 namespace {
 
-// `options` holds the output directory, threads and limits; progress is added here. Returns 0,
-// or 2 when the time limit stopped the run (report.json has status "stopped").
-int run_replay(const std::string& session_file, sutura::app::ReplayOptions options, bool quiet) {
+// `options` holds the output directory, threads and limits; progress is added here. With
+// `plan_report`, a plan_report op (plan_report.html and .pdf) runs after the session's last
+// line (as line 0: it is not in the file). Returns 0, or 2 when the time limit stopped the run
+// (report.json has status "stopped").
+int run_replay(const std::string& session_file, sutura::app::ReplayOptions options, bool quiet,
+               bool plan_report) {
   using namespace sutura::app;
   const std::string out_dir = options.out_dir.string();
   Session session;
@@ -42,6 +46,16 @@ int run_replay(const std::string& session_file, sutura::app::ReplayOptions optio
       // The parse error matters more than a report that could not be written.
     }
     throw;
+  }
+  if (plan_report) {
+    Action a;
+    a.name = "plan_report";
+    PlanReportOp op;
+    op.file = "plan_report.html";
+    op.pdf = "plan_report.pdf";
+    a.op = op;
+    a.source = {{"op", "plan_report"}, {"file", "plan_report.html"}, {"note", "added by sutura report"}};
+    session.actions.push_back(std::move(a));
   }
   options.progress = quiet ? nullptr : &std::cerr;
   // Long runs (a relaxation can take minutes) show where they stand, at most once a second
@@ -79,6 +93,8 @@ int run_replay(const std::string& session_file, sutura::app::ReplayOptions optio
     std::cerr << "sutura: done in " << result.report["total_seconds"].get<double>()
               << " s; report: " << out_dir << "/report.json\n";
   }
+  if (plan_report)
+    std::cout << out_dir << "/plan_report.html\n" << out_dir << "/plan_report.pdf\n";
   return 0;
 }
 
@@ -119,17 +135,45 @@ int main(int argc, char** argv) {
 
   std::string session_file, out_dir = "out";
   bool quiet = false;
+  int threads = 0;
+  sutura::app::ReplayOptions replay_options;
+  // The options of the two subcommands that run a session: replay and report.
+  const auto add_run_options = [&](CLI::App* sub) {
+    sub->add_option("session", session_file, "Session file (.jsonl)")->required();
+    sub->add_option("-o,--out", out_dir, "Output directory (created if missing)")->capture_default_str();
+    sub->add_flag("-q,--quiet", quiet, "No progress on stderr");
+    sub->add_option("--threads", threads,
+                    "Compute threads (OpenMP and BLAS); default: one per core. 1 is faster where "
+                    "other processes keep the cores busy; positions then differ in the last bits")
+        ->check(CLI::Range(1, 1024));
+    sutura::app::Limits& limits = replay_options.limits;
+    sub->add_option("--time-limit", replay_options.time_limit,
+                    "Stop cleanly after this many seconds (report.json status \"stopped\", exit code 2); "
+                    "default: none")
+        ->check(CLI::PositiveNumber);
+    sub->add_option("--max-faces", limits.faces_per_object, "Most faces of one object")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(1), std::size_t(20'000'000)));
+    sub->add_option("--max-faces-in-all", limits.faces_in_all, "Most faces of all objects together")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(1), std::size_t(100'000'000)));
+    sub->add_option("--max-objects", limits.objects, "Most objects")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(1), std::size_t(100'000)));
+    sub->add_option("--max-steps", limits.steps,
+                    "Most steps of one simulate (dynamics steps, relaxation increments and settling steps)")
+        ->capture_default_str()
+        ->check(CLI::Range(1L, 10'000'000L));
+    sub->add_option("--max-pixels", limits.pixels, "Most pixels of one snapshot (all its views)")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(256), std::size_t(1) << 31));
+    sub->add_option("--max-undo-mb", limits.undo_megabytes, "Most memory the undo history holds, MiB")
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20));
+  };
   auto* replay = app.add_subcommand("replay", "Run a planning session headlessly; write snapshots, "
                                               "meshes and report.json into the output directory");
-  replay->add_option("session", session_file, "Session file (.jsonl)")->required();
-  replay->add_option("-o,--out", out_dir, "Output directory (created if missing)")
-      ->capture_default_str();
-  replay->add_flag("-q,--quiet", quiet, "No progress on stderr");
-  int threads = 0;
-  replay->add_option("--threads", threads,
-                     "Compute threads (OpenMP and BLAS); default: one per core. 1 is faster where "
-                     "other processes keep the cores busy; positions then differ in the last bits")
-      ->check(CLI::Range(1, 1024));
+  add_run_options(replay);
   std::string emit_candidates;
   int candidate_count = 8;
   replay->add_option("--emit-candidates", emit_candidates,
@@ -139,30 +183,10 @@ int main(int argc, char** argv) {
                      "With --emit-candidates: widths per design_patch op, evenly spaced over its range")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));
-  sutura::app::ReplayOptions replay_options;
-  sutura::app::Limits& limits = replay_options.limits;
-  replay->add_option("--time-limit", replay_options.time_limit,
-                     "Stop cleanly after this many seconds (report.json status \"stopped\", exit code 2); "
-                     "default: none")
-      ->check(CLI::PositiveNumber);
-  replay->add_option("--max-faces", limits.faces_per_object, "Most faces of one object")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(1), std::size_t(20'000'000)));
-  replay->add_option("--max-faces-in-all", limits.faces_in_all, "Most faces of all objects together")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(1), std::size_t(100'000'000)));
-  replay->add_option("--max-objects", limits.objects, "Most objects")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(1), std::size_t(100'000)));
-  replay->add_option("--max-steps", limits.steps, "Most steps of one simulate (dynamics steps, relaxation increments and settling steps)")
-      ->capture_default_str()
-      ->check(CLI::Range(1L, 10'000'000L));
-  replay->add_option("--max-pixels", limits.pixels, "Most pixels of one snapshot (all its views)")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(256), std::size_t(1) << 31));
-  replay->add_option("--max-undo-mb", limits.undo_megabytes, "Most memory the undo history holds, MiB")
-      ->capture_default_str()
-      ->check(CLI::Range(std::size_t(0), std::size_t(1) << 20));
+  auto* report = app.add_subcommand(
+      "report", "Replay a planning session and write its plan report, plan_report.html and "
+                "plan_report.pdf, with the replay's outputs into the output directory");
+  add_run_options(report);
 
   std::string mesh_file;
   double weld = 1e-6;
@@ -199,10 +223,10 @@ int main(int argc, char** argv) {
       for (const auto& c : written) std::cout << c.file.string() << "\t" << c.width << "\n";
       return 0;
     }
-    if (*replay) {
+    if (*replay || *report) {
       replay_options.out_dir = out_dir;
       replay_options.threads = threads;
-      return run_replay(session_file, replay_options, quiet);
+      return run_replay(session_file, replay_options, quiet, static_cast<bool>(*report));
     }
     if (*info) return run_info(mesh_file, weld);
     if (*distance) return run_distance(distance_a, distance_b, spacing);

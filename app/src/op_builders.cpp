@@ -230,4 +230,6 @@ json patch_template_op(const Plan& plan, const std::string& object, std::size_t 
                               "' in this plan, so the patch's proximal end is not known.");
 }
 
+json plan_report_op(const std::string& file) { return {{"op", "plan_report"}, {"file", file}}; }
+
 }  // namespace sutura::app

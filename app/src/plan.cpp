@@ -171,6 +171,7 @@ std::string describe_action(const json& j) {
     return out;
   }
   if (op == "export_patch_template") return "Cutting template of a patch of " + object;
+  if (op == "plan_report") return "Plan report";
   if (op == "design_patch") {
     const json t = j.value("target", json::object());
     const std::string target =

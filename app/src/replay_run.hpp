@@ -78,6 +78,7 @@ struct Run {
   json execute(const ExportOp& op);
   json execute(const ExportPatchTemplateOp& op);
   json execute(const ReportOp& op, double elapsed);
+  json execute(const PlanReportOp& op);
 
   // Simulation ops (replay_simulation_ops.cpp).
   std::vector<engine::VertexId> resolve(const SceneObject& obj, const VertexSelection& sel);

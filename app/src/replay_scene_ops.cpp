@@ -1,14 +1,16 @@
 // Execution of the scene ops (generate, load, snapshot, export, export_patch_template,
-// report) and the report.
+// report, plan_report) and the report.
 #include "replay_run.hpp"
 
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <tuple>
 
 #include "sutura/engine/surgery/surface_attributes.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/patch_template.hpp"
+#include "sutura/app/plan_report.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/engine/blas_kernels.hpp"
@@ -299,6 +301,32 @@ json Run::execute(const ExportPatchTemplateOp& op) {
           {"width_mm", t.width_mm},
           {"bites", t.bites},
           {"page_mm", {t.page.width_mm, t.page.height_mm}}};
+}
+
+json Run::execute(const PlanReportOp& op) {
+  PlanReportSource source;
+  source.session_file = session.file;
+  source.description = session.description;
+  std::tie(source.session_sha256, source.session_bytes) = file_sha256(session.file);
+  source.program = program_version();
+  const engine::ComputeThreads threads = engine::compute_threads();
+  source.openmp_threads = threads.openmp;
+  source.blas_threads = threads.blas;
+  source.plan = &plan;
+  source.measurements = &measurements;
+  source.checks = &checks;
+  source.workspace = &workspace;
+  const PlanReport r = make_plan_report(
+      source, [this](const SnapshotOp& view) { return snapshots.render(view, workspace); }, op.view_width,
+      op.view_height);
+  // Both paths are checked before either file is written.
+  const std::filesystem::path html = output(op.file), pdf = output(op.pdf);
+  engine::write_file_atomically(html, r.html);
+  engine::write_file_atomically(pdf, r.pdf);
+  json j = r.summary;
+  j["file"] = op.file.generic_string();
+  j["pdf"] = op.pdf.generic_string();
+  return j;
 }
 
 json Run::execute(const ReportOp& op, double elapsed) {

@@ -17,7 +17,7 @@ struct OpParser {
   OpParse parse;
 };
 
-/// generate, load, snapshot, export, export_patch_template, report.
+/// generate, load, snapshot, export, export_patch_template, report, plan_report.
 const std::vector<OpParser>& scene_op_parsers();
 /// material, constrain, fix, force, line_load, pressure, body_force, solve, unload, simulate,
 /// probe, check.

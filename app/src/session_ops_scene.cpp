@@ -1,4 +1,5 @@
-// Parsers of the scene ops: generate, load, snapshot, export, export_patch_template, report.
+// Parsers of the scene ops: generate, load, snapshot, export, export_patch_template, report,
+// plan_report.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -179,6 +180,20 @@ ReportOp parse_report(Fields& f) {
   return op;
 }
 
+PlanReportOp parse_plan_report(Fields& f) {
+  PlanReportOp op;
+  op.file = output_file(f, "file", {".html"});
+  if (f.has("pdf")) {
+    op.pdf = output_file(f, "pdf", {".pdf"});
+  } else {
+    op.pdf = op.file;
+    op.pdf.replace_extension(".pdf");
+  }
+  op.view_width = f.optional_int("view_width", op.view_width, 200, 2000);
+  op.view_height = f.optional_int("view_height", op.view_height, 200, 2000);
+  return op;
+}
+
 }  // namespace
 
 const std::vector<OpParser>& scene_op_parsers() {
@@ -190,6 +205,7 @@ const std::vector<OpParser>& scene_op_parsers() {
       {"export_patch_template",
        [](Fields& f, const std::filesystem::path&) -> Op { return parse_export_patch_template(f); }},
       {"report", [](Fields& f, const std::filesystem::path&) -> Op { return parse_report(f); }},
+      {"plan_report", [](Fields& f, const std::filesystem::path&) -> Op { return parse_plan_report(f); }},
   };
   return parsers;
 }

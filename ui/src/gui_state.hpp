@@ -192,6 +192,7 @@ struct GuiState {
   char snapshot_file[128] = "gui_snapshot.png";
   char export_file[128] = "meshes/result.obj";
   char template_file[128] = "patch_template.pdf";
+  char report_file[128] = "plan_report.html";
 
   // Plan: opening and generating.
   char open_path[512] = "";

@@ -237,6 +237,17 @@ void inspect_section(GuiState& s) {
                    "and check its 10 mm bar (docs/patch-design.md)."))
     s.perform(s.template_op, "Saved the cutting template to " +
                                (s.controller.options().out_dir / s.template_file).string());
+  ImGui::InputText("report file", s.report_file, sizeof s.report_file);
+  if (gated_button(s.widgets, "Save plan report", s.why_not(Command::ExportMesh),
+                   "The plan report (.html, and a PDF of it beside it): the steps, before and after "
+                   "from standard views, the lumen profile, measurements, equilibrium, patch templates "
+                   "and materials, with this recording's hash (docs/patch-design.md).")) {
+    std::filesystem::path pdf = s.report_file;
+    pdf.replace_extension(".pdf");
+    s.perform(app::plan_report_op(s.report_file),
+              "Saved the plan report to " + (s.controller.options().out_dir / s.report_file).string() + " and " +
+                  (s.controller.options().out_dir / pdf).string());
+  }
   ImGui::Separator();
   if (gated_button(s.widgets, "Continue planning", s.why_not(Command::ContinuePlanning),
                    "Edit the simulated result further (another round of planning).")) {

@@ -116,5 +116,8 @@ nlohmann::json export_op(const std::string& object, const std::string& file);
 /// patch or the plan holds no applied patch op on it.
 nlohmann::json patch_template_op(const Plan& plan, const std::string& object, std::size_t patches,
                                  const std::string& file);
+/// The plan report (plan_report.hpp) as `file` (.html) and the PDF beside it (same name,
+/// .pdf).
+nlohmann::json plan_report_op(const std::string& file);
 
 }  // namespace sutura::app

@@ -157,6 +157,14 @@ struct ReportOp {
   std::filesystem::path file;
 };
 
+/// Writes the plan report (plan_report.hpp) inside the output directory: an HTML file and a
+/// PDF of the same content.
+struct PlanReportOp {
+  std::filesystem::path file;  ///< .html
+  std::filesystem::path pdf;   ///< .pdf; the parser's default: `file` with the extension .pdf
+  int view_width = 640, view_height = 520;  ///< pixels of each half of a standard view
+};
+
 /// The material fields a session line gives; the others come from `base` (applied_to).
 struct MaterialFields {
   std::optional<double> youngs_modulus, poisson_ratio, thickness, density, drilling_factor;
@@ -429,7 +437,7 @@ struct DistanceOp {
 struct UndoOp {};
 struct RedoOp {};
 
-using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ExportPatchTemplateOp, ReportOp, MaterialOp,
+using Op = std::variant<GenerateOp, LoadOp, SnapshotOp, ExportOp, ExportPatchTemplateOp, ReportOp, PlanReportOp, MaterialOp,
                         ConstrainOp, ForceOp, LineLoadOp, PressureOp, BodyForceOp, SolveOp,
                         UnloadOp, SimulateOp, ProbeOp, CheckOp, InciseOp, JoinOp, PatchOp, ResectOp,
                         RemeshOp, MeasureOp, DesignPatchOp, DistanceOp, UndoOp, RedoOp>;
