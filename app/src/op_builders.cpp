@@ -1,6 +1,7 @@
 #include "sutura/app/op_builders.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <charconv>
 #include <cstdlib>
 #include <stdexcept>
@@ -179,6 +180,34 @@ json lumen_profile_op(const std::string& object, const std::string& name, const 
                       const engine::Vec3& to) {
   return {{"op", "measure"}, {"object", object}, {"name", name}, {"centreline", "auto"},
           {"from", point_json(from)}, {"to", point_json(to)}};
+}
+
+json design_patch_op(const json& patch, int relax_steps, bool collapse_barrier, const DesignTarget& target) {
+  json part = patch;
+  const std::string object = part.value("object", std::string());
+  for (const char* key : {"op", "object", "width"}) part.erase(key);
+  json relax = {{"steps", relax_steps}};
+  json run = {{"objects", json::array({object})}, {"relax", relax}};
+  if (collapse_barrier) run["collapse_barrier"] = true;
+  json line = json::array();
+  double length = 0.0;
+  for (std::size_t k = 0; k < target.centreline.size(); ++k) {
+    line.push_back(point_json(target.centreline[k]));
+    if (k > 0) length += (target.centreline[k] - target.centreline[k - 1]).norm();
+  }
+  json measure = {{"name", "design_lumen"},
+                  {"centreline", line},
+                  {"stations", std::clamp(static_cast<int>(std::lround(length)) + 1, 11, 101)}};
+  if (target.max_radius > 0.0) measure["max_radius"] = target.max_radius;
+  return {{"op", "design_patch"},
+          {"object", object},
+          {"patch", part},
+          {"simulate", run},
+          {"measure", measure},
+          {"width_range", {target.width_min, target.width_max}},
+          {"target", {{"min_area_mm2", target.min_area_mm2}}},
+          {"tolerance", target.tolerance},
+          {"max_bulge", target.max_bulge}};
 }
 
 json measure_op(const std::string& object, const std::string& name, const engine::Vec3& origin,

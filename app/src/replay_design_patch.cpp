@@ -32,6 +32,7 @@ struct Candidate {
   double seconds = 0.0;
   Workspace after;
   json measurement;
+  json run;  // what its simulate reported (equilibrium, residual, ...)
 };
 
 double diameter(double area) { return 2.0 * std::sqrt(area / std::numbers::pi); }
@@ -98,9 +99,10 @@ json Run::execute(const DesignPatchOp& op) {
     PatchOp patch = op.patch;
     patch.params.width = width;
     if (patch.params.min_edge_length > 0.0) patch.params.min_edge_length = width / 5.0;
+    json run;
     try {
       execute(patch);
-      execute(op.simulate);
+      run = execute(op.simulate);
       execute(op.measure);
     } catch (const OpCancelled&) {
       restore();
@@ -115,6 +117,7 @@ json Run::execute(const DesignPatchOp& op) {
     c.measurement = measurements[op.measure.name];
     read_profile(c.measurement, c);
     c.after = workspace;
+    c.run = std::move(run);
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     candidates.push_back(std::move(c));
     Candidate& added = candidates.back();
@@ -248,6 +251,10 @@ json Run::execute(const DesignPatchOp& op) {
   if (!op.plot.empty()) j["plot"] = op.plot.generic_string();
   j["summary"] = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +
                  fixed(value(*chosen), 3) + " (" + reason + ")";
+  // The chosen candidate's run, as its simulate op would report it.
+  for (const char* key : {"s_reached", "residual", "equilibrium"})
+    if (chosen->run.contains(key)) j[key] = chosen->run[key];
+  if (chosen->run.contains("warning")) j["warning"] = "the chosen candidate: " + chosen->run["warning"].get<std::string>();
   return j;
 }
 

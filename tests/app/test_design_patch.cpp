@@ -87,6 +87,10 @@ TEST(DesignPatch, MeetsAMinimumAreaAndEqualsAPlainReplayOfItsWidth) {
                                                      sutura::testing::scratch_dir("design", "met"));
   const json& d = design_action(r);
   EXPECT_EQ(d["status"], "met") << d.dump(1);
+  // The chosen candidate's run, as its simulate reports it: relaxed to s = 1, stable.
+  EXPECT_EQ(d["s_reached"].get<double>(), 1.0);
+  EXPECT_TRUE(d["equilibrium"]["stable"].get<bool>()) << d["equilibrium"].dump();
+  EXPECT_FALSE(d.contains("warning"));
   EXPECT_LE(d["relaxations"].get<int>(), 8);
   EXPECT_EQ(d["candidates"].size(), d["relaxations"].get<std::size_t>());
   const double width = d["width_mm"].get<double>();

@@ -95,6 +95,7 @@ void finish_worker(GuiState& s) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", d.value("seconds", 0.0));
     std::string text = outcome->op + " finished in " + seconds + " s";
+    if (d.contains("summary") && d["summary"].is_string()) text += ": " + d["summary"].get<std::string>();  // design_patch
     if (s.last_equilibrium.is_object() && s.last_equilibrium.value("stable", false))
       text += "; the relaxed shape is a stable equilibrium";
     s.info(text);

@@ -64,6 +64,12 @@ struct PatchDraft {
   int shape = 0;                   ///< 0 ellipse, 1 diamond, 2 triangle
   float width = 4.0f;              ///< mm
   float youngs_modulus = 2.0f, poisson_ratio = 0.45f, thickness = 0.5f;
+  /// Design the width instead (app::DesignTarget), the lumen measured along the incision
+  /// between `ends`.
+  float target_area = 20.0f;        ///< mm^2
+  float tolerance_percent = 5.0f;
+  float width_min = 2.0f, width_max = 8.0f;  ///< mm
+  float max_bulge = 1.4f;
 };
 
 /// Remesh: the faces within `radius` of the clicked points (of the whole object without

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "panels.hpp"
+#include "sutura/app/incision_span.hpp"
 #include "sutura/app/plan.hpp"
 #include "sutura/app/suture_preview.hpp"
 
@@ -197,6 +198,61 @@ void refresh_patch_preview(GuiState& s, const std::optional<json>& op) {
   }
 }
 
+// Design the width instead of giving it: design_patch with the patch drawn above, relaxed as
+// the Simulate panel would, its lumen measured along the incision (the automatic centreline
+// between the points nearest its two ends). It runs in the
+// background like a simulation and ends in Inspect with the chosen patch.
+// mm of lumen measured beyond each end of the incision.
+constexpr double kDesignMargin = 3.0;
+
+void design_controls(GuiState& s, const std::optional<json>& patch) {
+  if (!noted_tree_node(s.widgets, "Design the width to a target")) return;
+  ImGui::TextWrapped("Tries widths in the range, each sewn in and relaxed under the loads, until the smallest "
+                     "lumen area along the incision (its centreline from 3 mm before the first end clicked to 3 mm "
+                     "past the second) reaches the target (docs/patch-design.md).");
+  number_field("target area [mm2]", &s.patch.target_area, 1.0f, 2000.0f, 1.0f, "%.1f");
+  number_field("tolerance [%]", &s.patch.tolerance_percent, 1.0f, 100.0f, 1.0f, "%.0f");
+  number_field("narrowest [mm]", &s.patch.width_min, 0.5f, 50.0f, 0.5f, "%.1f");
+  number_field("widest [mm]", &s.patch.width_max, 0.5f, 50.0f, 0.5f, "%.1f");
+  number_field("max bulge", &s.patch.max_bulge, 1.0f, 3.0f, 0.05f, "%.2f");
+  tooltip_for_last_item("The largest lumen diameter along the incision, at most this many times the diameter "
+                        "at its second (distal) end.");
+  const app::SceneObject* obj = s.selected();
+  std::optional<std::string> why = s.why_not(Command::StartSimulation, "design_patch");
+  if (!why && !patch) why = "Click both incision ends first.";
+  if (!why && !s.patch_preview_error.empty()) why = s.patch_preview_error;
+  if (!why && !(s.patch.width_min < s.patch.width_max)) why = "The narrowest width must be below the widest.";
+  if (gated_button(s.widgets, "Design patch", why,
+                   "Runs in the background; ends in Inspect with the chosen width (one undo step).") &&
+      patch && obj) {
+    app::DesignTarget t;
+    t.min_area_mm2 = app::as_typed(s.patch.target_area);
+    t.tolerance = app::as_typed(s.patch.tolerance_percent) / 100.0;
+    t.width_min = app::as_typed(s.patch.width_min);
+    t.width_max = app::as_typed(s.patch.width_max);
+    t.max_bulge = app::as_typed(s.patch.max_bulge);
+    std::string refused;
+    try {
+      const app::IncisionSpan span = app::incision_span(obj->mesh, s.patch.ends[0], s.patch.ends[1], kDesignMargin);
+      t.centreline = span.centreline;
+      t.max_radius = span.max_radius_mm;
+    } catch (const std::exception& e) {
+      s.error(std::string("design_patch: the lumen along the incision: ") + e.what());
+      ImGui::TreePop();
+      return;
+    }
+    if (s.start_run(app::design_patch_op(*patch, s.simulation.relax_steps, s.simulation.collapse_barrier, t), 1, 1,
+                    refused)) {
+      s.stages.simulation_started();
+      s.patch.ends.clear();
+      s.tool = Tool::Navigate;
+    } else {
+      s.error("design_patch: " + refused);
+    }
+  }
+  ImGui::TreePop();
+}
+
 void patch_controls(GuiState& s) {
   static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
   static const char* kShapeUse[] = {"an incision inside the wall (patch aortoplasty)",
@@ -240,6 +296,7 @@ void patch_controls(GuiState& s) {
                   kShapes[s.patch.shape], s.patch.width, s.patch.youngs_modulus, s.patch.thickness);
     if (s.perform(*op, done)) s.patch.ends.clear();
   }
+  design_controls(s, op);
 }
 
 void remesh_controls(GuiState& s) {

@@ -90,6 +90,23 @@ nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_
 /// to s = 0.6, then damped dynamics (pace-setting density 1e-6 t/mm^3, dt 0.5 ms, 80 steps
 /// to s = 1 and 40 more) and a static settle. Two simulate ops, to run one after the other.
 std::vector<nlohmann::json> flap_relaxation_ops(bool collapse_barrier);
+/// What the window's patch design asks for (DesignPatchOp): the smallest lumen area along
+/// `centreline` (a polyline, mm; sections no wider than `max_radius` mm, one per mm of it, at
+/// least 11), within `tolerance` (a fraction), the largest diameter along it at most
+/// `max_bulge` times the diameter at its end, for widths in [width_min, width_max] mm.
+struct DesignTarget {
+  double min_area_mm2 = 20.0;
+  double tolerance = 0.05;
+  double width_min = 2.0, width_max = 8.0;
+  double max_bulge = 1.4;
+  std::vector<engine::Vec3> centreline;
+  double max_radius = 0.0;
+};
+/// {"op": "design_patch"} of the patch `patch` (a patch_op; its width is what is chosen),
+/// each candidate relaxed in `relax_steps` increments (with the collapse barrier when asked)
+/// and measured as `target` says, under the name "design_lumen".
+nlohmann::json design_patch_op(const nlohmann::json& patch, int relax_steps, bool collapse_barrier,
+                               const DesignTarget& target);
 /// Cross-section of `object` by a plane, reported under `name`.
 /// {"op": "measure", "centreline": "auto", "from", "to"}: the lumen profile along the automatic
 /// centreline between the points nearest `from` and `to` (e.g. two open ends' centres).

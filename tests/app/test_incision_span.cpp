@@ -1,0 +1,70 @@
+// incision_span: the piece of a vessel's centreline along an incision, which the planning
+// window's patch design measures; and the design_patch op built from it.
+#include "sutura/app/incision_span.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sutura/app/op_builders.hpp"
+#include "sutura/app/session.hpp"
+#include "sutura/engine/generators.hpp"
+
+namespace {
+
+using sutura::engine::Vec3;
+
+sutura::engine::SurfaceMesh tube() {
+  sutura::engine::TubeParams p;
+  p.radius = 4.0;
+  p.length = 40.0;
+  p.segments_around = 32;
+  p.segments_along = 40;
+  return sutura::engine::make_tube(p);
+}
+
+// On a straight tube the span is the axis from 3 mm before the first end to 3 mm past the
+// second, in the order given; its sections may be twice the radius wide.
+TEST(IncisionSpan, RunsAlongTheAxisPastBothEnds) {
+  const auto mesh = tube();
+  const sutura::app::IncisionSpan span = sutura::app::incision_span(mesh, {4, 0, 25}, {0, 4, 12}, 3.0);
+  ASSERT_GE(span.centreline.size(), 2u);
+  EXPECT_NEAR(span.centreline.front().z(), 28.0, 0.3);
+  EXPECT_NEAR(span.centreline.back().z(), 9.0, 0.3);
+  EXPECT_NEAR(span.length_mm, 19.0, 0.3);
+  for (const Vec3& p : span.centreline) EXPECT_LT(std::hypot(p.x(), p.y()), 0.2) << p.transpose();
+  EXPECT_NEAR(span.max_radius_mm, 8.0, 0.4);
+  // Within the path: a margin longer than the tube stops at its ends.
+  const sutura::app::IncisionSpan whole = sutura::app::incision_span(mesh, {4, 0, 10}, {4, 0, 30}, 100.0);
+  EXPECT_NEAR(whole.length_mm, 40.0, 1.0);
+}
+
+TEST(IncisionSpan, RefusesWhatItCannotPlace) {
+  const auto mesh = tube();
+  EXPECT_THROW((void)sutura::app::incision_span(mesh, {4, 0, 10}, {4, 0, 20}, -1.0), std::invalid_argument);
+  EXPECT_THROW((void)sutura::app::incision_span(mesh, {4, 0, 10}, {0, 4, 10}, 3.0), std::invalid_argument)
+      << "both ends at one height project to one point";
+}
+
+// The window's design_patch op parses as a session line and measures along the span.
+TEST(IncisionSpan, TheDesignOpParses) {
+  const auto mesh = tube();
+  sutura::app::DesignTarget t;
+  const sutura::app::IncisionSpan span = sutura::app::incision_span(mesh, {4, 0, 25}, {4, 0, 12}, 3.0);
+  t.centreline = span.centreline;
+  t.max_radius = span.max_radius_mm;
+  const nlohmann::json patch = sutura::app::patch_op("t", "ellipse", {4, 0, 25}, {4, 0, 12}, 4.0,
+                                                     {{"youngs_modulus", 3.0}, {"thickness", 0.4}});
+  const nlohmann::json op = sutura::app::design_patch_op(patch, 3, false, t);
+  const sutura::app::Action a = sutura::app::parse_action(op, "s.jsonl", 2);
+  const auto& d = std::get<sutura::app::DesignPatchOp>(a.op);
+  EXPECT_EQ(d.patch.object, "t");
+  EXPECT_EQ(d.measure.centreline.size(), span.centreline.size());
+  EXPECT_EQ(d.measure.stations, 20) << "one a mm of the 19 mm span, plus one";
+  EXPECT_DOUBLE_EQ(d.measure.max_radius, span.max_radius_mm);
+  EXPECT_DOUBLE_EQ(d.target_value, 20.0);
+  ASSERT_TRUE(d.max_bulge.has_value());
+  EXPECT_DOUBLE_EQ(*d.max_bulge, 1.4);
+}
+
+}  // namespace
