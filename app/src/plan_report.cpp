@@ -144,11 +144,11 @@ void plan_section(Document& d, const Plan& plan) {
                 " later step(s) were undone and are not part of this plan.");
 }
 
-void views_section(Document& d, const SnapshotDrawer& draw, int width, int height) {
+void views_section(Document& d, const SnapshotDrawer& draw, int width, int height, const std::string& before) {
   d.section("views", "Before and after");
   d.paragraph("Each object before the operation (left) and now (right), from the standard views of "
               "the workspace frame (+x the patient's left, +y posterior, +z superior; docs/anatomy.md). "
-              "Sutures are green, incisions red.");
+              "Sutures are green, incisions red. " + before);
   struct View {
     const char* name;
     Vec3d view;
@@ -209,7 +209,47 @@ void change_row(Table& t, const std::string& name, const std::string& quantity, 
                     both && before != 0.0 ? signed_percent(100.0 * (after - before) / before) : "-"});
 }
 
-void measurements_section(Document& d, const json& measurements, const json& checks) {
+// Whether the step names `object` (its "object", or a solve's "objects", none meaning all).
+bool names_object(const json& src, const std::string& object) {
+  if (src.contains("objects") && src["objects"].is_array()) {
+    for (const json& o : src["objects"])
+      if (o.is_string() && o.get<std::string>() == object) return true;
+    return false;
+  }
+  return !src.contains("object") || string_at(src, "object") == object;
+}
+
+// What "before" is for each object: the pre-operative vessel under its loads (a solve made it
+// the pre-operative shape, or an imaged vessel was unloaded), or unloaded; and a warning when
+// it is unloaded while the plan loads the vessel, so that before and after differ by the
+// loading as well as by the surgery.
+std::string before_note(const Plan& plan, const Workspace& workspace) {
+  std::string note;
+  for (const SceneObject& obj : workspace.objects()) {
+    int loaded_before = 0;
+    bool loads = false;
+    for (std::size_t i = 0; i < plan.applied; ++i) {
+      const PlanStep& p = plan.steps[i];
+      if (!names_object(p.source, obj.name)) continue;
+      if ((p.op == "solve" && p.source.value("as_before", false)) || p.op == "unload") loaded_before = p.line;
+      if (p.op == "pressure" || p.op == "force" || p.op == "line_load" || p.op == "body_force") loads = true;
+    }
+    std::string line = "'" + obj.name + "': ";
+    if (loaded_before > 0)
+      line += "before is the pre-operative vessel under its loads (line " + std::to_string(loaded_before) + ").";
+    else if (loads)
+      line += "before is the vessel unloaded, as it was loaded or generated, while after is under the plan's loads: "
+              "each change includes the loading as well as the surgery. To compare like with like, make the "
+              "loaded vessel the pre-operative shape (a solve with as_before before the first incision).";
+    else
+      line += "before is the vessel as it was loaded or generated; nothing loads it.";
+    if (!note.empty()) note += ' ';
+    note += line;
+  }
+  return note;
+}
+
+void measurements_section(Document& d, const json& measurements, const json& checks, const std::string& before) {
   d.section("measurements", "Measurements");
   if (measurements.empty()) {
     d.paragraph("No measurement was taken.");
@@ -236,8 +276,7 @@ void measurements_section(Document& d, const json& measurements, const json& che
       }
     }
     d.table(std::move(t));
-    d.paragraph("Before: the pre-operative shape (as loaded or generated, or as unloaded); after: the "
-                "shape now.");
+    d.paragraph("Before: the pre-operative shape; after: the shape now. " + before);
   }
   if (checks.empty()) return;
   Table c;
@@ -750,9 +789,10 @@ PlanReport make_plan_report(const PlanReportSource& s, const SnapshotDrawer& dra
   reproduce_section(d, s);
   if (!s.description.empty()) d.paragraph(s.description);
   plan_section(d, *s.plan);
-  views_section(d, draw, view_width, view_height);
+  const std::string before = before_note(*s.plan, *s.workspace);
+  views_section(d, draw, view_width, view_height, before);
   lumen_section(d, *s.measurements);
-  measurements_section(d, *s.measurements, *s.checks);
+  measurements_section(d, *s.measurements, *s.checks, before);
   equilibrium_section(d, *s.plan);
   design_section(d, *s.plan);
   template_section(d, s, templates);

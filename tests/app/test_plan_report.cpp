@@ -200,6 +200,8 @@ TEST(PlanReport, SectionsSayWhatThePlanDid) {
   const std::regex row(std::string("smallest lumen area \\(mm2\\) +") + before + " +" + after + " +" +
                        std::regex_replace(change, std::regex("[+]"), "\\+"));
   EXPECT_TRUE(std::regex_search(table, row)) << table;
+  // The tube is inflated only after the incision: "before" is unloaded, and the report says so.
+  EXPECT_NE(table.find("'t': before is the vessel unloaded"), std::string::npos) << table;
   EXPECT_NE(table.find("pass"), std::string::npos) << "the check";
   // Equilibrium of the relaxation; materials with the lines that set them.
   EXPECT_NE(p.text_by_id.at("equilibrium").find("relaxed to s = 1"), std::string::npos) << p.text_by_id.at("equilibrium");
@@ -260,6 +262,8 @@ TEST(PlanReport, EmptySectionsSaySo) {
   EXPECT_NE(p.text_by_id.at("equilibrium").find("not equilibria"), std::string::npos);
   EXPECT_NE(p.text_by_id.at("template").find("No patch is sewn in"), std::string::npos);
   EXPECT_NE(p.text_by_id.at("materials").find("default values"), std::string::npos);
+  EXPECT_NE(p.text_by_id.at("views").find("'t': before is the vessel as it was loaded or generated; nothing loads it"),
+            std::string::npos);
   EXPECT_EQ(p.images.size(), 3u);
 }
 
