@@ -1,14 +1,20 @@
 # Writes OUTPUT, a header defining SUTURA_COMMIT: the commit of the checkout in SOURCE_DIR (12
-# hex digits, "+changes" when tracked files differ from it), or "unknown" outside a git
-# checkout. Run at every build (app/CMakeLists.txt); the file is rewritten only when its text
+# hex digits, "+changes" when tracked files differ from it), or "unknown" when SOURCE_DIR is not
+# the top of a git checkout. Run at every build (app/CMakeLists.txt); the file is rewritten only when its text
 # changes, so nothing recompiles for an unchanged commit.
 #   cmake -DSOURCE_DIR=... -DOUTPUT=... -P build_id.cmake
 set(commit "unknown")
 find_program(GIT git)
 if(GIT)
+  # Only SOURCE_DIR's own checkout: a source tarball unpacked inside another repository must
+  # not take that repository's commit.
+  execute_process(COMMAND ${GIT} -C ${SOURCE_DIR} rev-parse --show-toplevel
+                  OUTPUT_VARIABLE top RESULT_VARIABLE top_rc OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  get_filename_component(top "${top}" REALPATH)
+  get_filename_component(source "${SOURCE_DIR}" REALPATH)
   execute_process(COMMAND ${GIT} -C ${SOURCE_DIR} rev-parse --short=12 HEAD
                   OUTPUT_VARIABLE head RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-  if(rc EQUAL 0 AND head MATCHES "^[0-9a-f]+$")
+  if(top_rc EQUAL 0 AND top STREQUAL source AND rc EQUAL 0 AND head MATCHES "^[0-9a-f]+$")
     set(commit "${head}")
     execute_process(COMMAND ${GIT} -C ${SOURCE_DIR} diff --quiet HEAD --
                     RESULT_VARIABLE dirty ERROR_QUIET)

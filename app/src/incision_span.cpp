@@ -1,6 +1,8 @@
 #include "sutura/app/incision_span.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -41,7 +43,25 @@ Vec3 point_at(const std::vector<Vec3>& path, double s) {
 
 IncisionSpan incision_span(const engine::SurfaceMesh& mesh, const Vec3& start, const Vec3& end, double margin_mm) {
   if (!(margin_mm >= 0.0)) throw std::invalid_argument("incision span: the margin must be >= 0 mm");
-  const engine::CentrelineTree tree = engine::extract_centreline(mesh);
+  // One end per open end, the widest (largest vector area) first: the root of the tree. By
+  // default the longest loop would be, and an incision's slit, flat, can be longer than any
+  // end's circumference; the tree would then grow from the slit.
+  const auto loops = mesh.boundary_loops();
+  std::vector<std::pair<double, engine::VesselEnd>> by_area;
+  for (const auto& loop : loops) {
+    Vec3 centre = Vec3::Zero();
+    for (const auto v : loop) centre += mesh.position(v);
+    centre /= static_cast<double>(std::max<std::size_t>(1, loop.size()));
+    Vec3 area = Vec3::Zero();
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      area += 0.5 * (mesh.position(loop[k]) - centre).cross(mesh.position(loop[(k + 1) % loop.size()]) - centre);
+    const double a = area.norm();
+    by_area.push_back({a, {"", centre, a > 0.0 ? Vec3(area / a) : Vec3::UnitZ(), std::sqrt(a / std::numbers::pi)}});
+  }
+  std::stable_sort(by_area.begin(), by_area.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<engine::VesselEnd> given;
+  for (auto& [a, end] : by_area) given.push_back(std::move(end));
+  const engine::CentrelineTree tree = engine::extract_centreline(mesh, given);
   std::vector<double> radii;
   for (int n : tree.end_nodes) radii.push_back(tree.radii[static_cast<std::size_t>(n)]);
   std::vector<double> sorted = radii;

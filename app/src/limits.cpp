@@ -87,6 +87,12 @@ void check_limits(const Session& session, const Limits& limits) {
       const double pixels = double(shot->width) * double(shot->height) * (shot->side_by_side ? 2.0 : 1.0);
       if (pixels > double(limits.pixels))
         refuse(session, a, "width", "a snapshot of ", pixels, " pixels", double(limits.pixels), "--max-pixels");
+    } else if (const auto* pr = std::get_if<PlanReportOp>(&a.op)) {
+      // Each standard view is a snapshot of two halves.
+      const double pixels = 2.0 * double(pr->view_width) * double(pr->view_height);
+      if (pixels > double(limits.pixels))
+        refuse(session, a, "view_width", "a plan report's view of ", pixels, " pixels", double(limits.pixels),
+               "--max-pixels");
     } else if (const auto* r = std::get_if<SimulateOp>(&a.op)) {
       check_run(session, a, *r, "", limits);
     }

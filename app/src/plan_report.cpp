@@ -167,7 +167,8 @@ void views_section(Document& d, const SnapshotDrawer& draw, int width, int heigh
 }
 
 bool is_profile(const json& m) {
-  return m.is_object() && m.contains("before") && m["before"].is_object() && m["before"].contains("stations");
+  return m.is_object() && m.contains("before") && m["before"].is_object() && m["before"].contains("stations") &&
+         m.contains("after") && m["after"].is_object();
 }
 
 void lumen_section(Document& d, const json& measurements) {
@@ -186,13 +187,15 @@ void lumen_section(Document& d, const json& measurements) {
       render::ChartSeries series;
       series.label = side;
       if (side[0] == 'a') series.color = {214, 39, 40, 255};
-      for (const json& st : m[side]["stations"])
-        if (st.value("closed", false) && st["area_mm2"].is_number())
-          series.points.push_back({st["arc_length_mm"].get<double>(), st["area_mm2"].get<double>()});
+      const json stations = m.contains(side) ? m[side].value("stations", json::array()) : json::array();
+      for (const json& st : stations) {
+        const double x = number_at(st, "arc_length_mm"), y = number_at(st, "area_mm2");
+        if (st.value("closed", false) && std::isfinite(x) && std::isfinite(y)) series.points.push_back({x, y});
+      }
       if (!series.points.empty()) chart.series.push_back(std::move(series));
     }
     if (chart.series.empty()) continue;
-    const double after_min = number_at(m["after"], "min_area_arc_length_mm");
+    const double after_min = m.contains("after") ? number_at(m["after"], "min_area_arc_length_mm") : std::nan("");
     if (std::isfinite(after_min)) chart.markers.push_back({after_min, "narrowest now"});
     d.picture(render::draw_chart(chart),
               "Lumen '" + name + "': cross-section area along the centreline, before and after "
@@ -265,12 +268,12 @@ void measurements_section(Document& d, const json& measurements, const json& che
         change_row(t, name, "its position along the centreline (mm)", number_at(b, "min_area_arc_length_mm"),
                    number_at(a, "min_area_arc_length_mm"), 1);
         t.rows.back().back() = "-";  // a position's relative change means nothing
-      } else if (m.contains("before") && m.contains("after")) {  // a plane section
+      } else if (m.is_object() && m.contains("before") && m.contains("after")) {  // a plane section
         const json &b = m["before"], &a = m["after"];
         change_row(t, name, "cross-section area (mm2)", number_at(b, "area_mm2"), number_at(a, "area_mm2"), 2);
         change_row(t, name, "equivalent diameter (mm)", number_at(b, "equivalent_diameter_mm"),
                    number_at(a, "equivalent_diameter_mm"), 2);
-      } else if (m.contains("symmetric_mm")) {  // a distance between two objects
+      } else if (m.is_object() && m.contains("symmetric_mm")) {  // a distance between two objects
         t.rows.push_back({name, "Hausdorff distance '" + string_at(m, "a") + "' to '" + string_at(m, "b") + "' (mm)",
                           "-", fixed(number_at(m, "symmetric_mm"), 3), "-"});
       }
@@ -350,24 +353,32 @@ void design_section(Document& d, const Plan& plan) {
   }
 }
 
-// The point a patch's template starts from: the `start` of the k-th step in effect that sewed a
-// patch into `object` (patch or design_patch), or none.
-std::optional<engine::Vec3> patch_start(const Plan& plan, const std::string& object, int k) {
-  int seen = 0;
+// The last step in effect that sewed in the patch whose material is `material` (a patch or
+// design_patch whose result names it), or none: a material step over the whole object, for
+// one, makes every face the wall's, and a later patch may take the index again.
+const PlanStep* patch_step(const Plan& plan, const std::string& object, int material) {
+  const PlanStep* found = nullptr;
   for (std::size_t i = 0; i < plan.applied; ++i) {
-    const json& src = plan.steps[i].source;
-    const json* fields = nullptr;
-    if (plan.steps[i].op == "patch") fields = &src;
-    if (plan.steps[i].op == "design_patch" && src.contains("patch")) fields = &src["patch"];
-    if (fields == nullptr || (string_at(*fields, "object") != object && string_at(src, "object") != object)) continue;
-    if (++seen != k) continue;
-    if (fields->contains("start") && (*fields)["start"].is_array() && (*fields)["start"].size() == 3) {
-      const json& p = (*fields)["start"];
-      return engine::Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-    }
-    return std::nullopt;
+    const PlanStep& p = plan.steps[i];
+    if ((p.op == "patch" || p.op == "design_patch") && string_at(p.source, "object") == object &&
+        p.result.is_object() && p.result.value("material_index", -1) == material)
+      found = &p;
   }
-  return std::nullopt;
+  return found;
+}
+
+// Where that step started the patch (its `start`, or its `patch` part's), the template's
+// proximal end.
+std::optional<engine::Vec3> patch_start(const PlanStep* step) {
+  if (step == nullptr) return std::nullopt;
+  const json& src = step->source;
+  const json& fields = step->op == "design_patch" && src.contains("patch") ? src["patch"] : src;
+  if (!fields.is_object() || !fields.contains("start") || !fields["start"].is_array() || fields["start"].size() != 3)
+    return std::nullopt;
+  const json& p = fields["start"];
+  for (const json& c : p)
+    if (!c.is_number()) return std::nullopt;
+  return engine::Vec3(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
 }
 
 void template_section(Document& d, const PlanReportSource& s, json& templates) {
@@ -378,15 +389,23 @@ void template_section(Document& d, const PlanReportSource& s, json& templates) {
       const int number = static_cast<int>(k) + 1;
       PatchTemplateOptions options;
       options.patch = number;
-      const std::optional<engine::Vec3> start = patch_start(*s.plan, obj.name, number);
+      const std::optional<engine::Vec3> start = patch_start(patch_step(*s.plan, obj.name, patches[k]));
       if (start) options.proximal = *start;
       const std::string heading = "Sutura cutting template: " + s.session_file.filename().string() +
                                   ", object '" + obj.name + "', patch " + std::to_string(number);
-      const PatchTemplate t = make_patch_template(obj, heading, options);
-      std::string text = "Patch " + std::to_string(number) + " of '" + obj.name + "': " + fixed(t.length_mm, 1) +
-                         " x " + fixed(t.width_mm, 1) + " mm, seam " + fixed(t.seam_length_mm, 1) + " mm, area " +
-                         fixed(t.area_mm2, 1) + " mm2, " + std::to_string(t.bites) +
-                         " bite marks; the rest shape is " + fixed(t.max_gap_mm, 3) + " mm from a flat cut. ";
+      const std::string name = "Patch " + std::to_string(number) + " of '" + obj.name + "'";
+      PatchTemplate t;
+      try {
+        t = make_patch_template(obj, heading, options);
+      } catch (const std::exception& e) {
+        d.paragraph(name + ": no template (" + e.what() + ").");
+        templates.push_back({{"object", obj.name}, {"patch", number}, {"error", e.what()}});
+        continue;
+      }
+      std::string text = name + ": " + fixed(t.length_mm, 1) + " x " + fixed(t.width_mm, 1) + " mm, seam " +
+                         fixed(t.seam_length_mm, 1) + " mm, area " + fixed(t.area_mm2, 1) + " mm2, " +
+                         std::to_string(t.bites) + " bite marks; the rest shape is " + fixed(t.max_gap_mm, 3) +
+                         " mm from a flat cut. ";
       text += start ? "Its top is the seam's point nearest where the patch step started."
                     : "No patch step of the plan gives its proximal end: the top of the page is arbitrary.";
       d.paragraph(text);
@@ -413,25 +432,20 @@ void materials_section(Document& d, const PlanReportSource& s) {
       const auto it = std::find(patches.begin(), patches.end(), static_cast<int>(m));
       std::string role = m == 0 ? "wall" : it != patches.end() ? "patch " + std::to_string(it - patches.begin() + 1)
                                                                 : "part " + std::to_string(m);
-      // The source: the last step in effect that set this material (a material step on the
-      // whole object or its wall for the wall; the k-th patch step for patch k) and its note;
-      // then each later material step at a point, which may have changed it.
+      // The source: for the wall, the last step in effect that set the material of the whole
+      // object or of its wall; for a patch, the step that sewed it in (patch_step); then each
+      // later material step at a point, which may have changed it.
       std::string source = "default values (no step set them)", may;
-      int patch_seen = 0;
+      const PlanStep* sewn = m == 0 ? nullptr : patch_step(*s.plan, obj.name, static_cast<int>(m));
       for (std::size_t i = 0; i < s.plan->applied; ++i) {
         const PlanStep& p = s.plan->steps[i];
         const json& src = p.source;
-        const bool on_object = string_at(src, "object") == obj.name ||
-                               (src.contains("patch") && string_at(src["patch"], "object") == obj.name);
-        if (!on_object) continue;
+        if (string_at(src, "object") != obj.name) continue;
         if (p.op == "material" && src.contains("at")) {
           may += (may.empty() ? "; may have been changed by line " : ", line ") + std::to_string(p.line);
           continue;
         }
-        const bool sets = p.op == "material" ? m == 0
-                          : p.op == "patch" || p.op == "design_patch"
-                              ? it != patches.end() && ++patch_seen == it - patches.begin() + 1
-                              : false;
+        const bool sets = p.op == "material" ? m == 0 : &p == sewn;
         if (!sets) continue;
         source = "line " + std::to_string(p.line) + ": " + describe_action(src);
         if (const std::string note = string_at(src, "note"); !note.empty()) source += " (" + note + ")";
@@ -451,19 +465,44 @@ void materials_section(Document& d, const PlanReportSource& s) {
 
 // ---- HTML -----------------------------------------------------------------------------------
 
+// Text for the HTML, which is also XML: markup characters escaped, and what is not a valid
+// XML character in UTF-8 (control bytes, malformed or overlong sequences, surrogates,
+// U+FFFE and U+FFFF; a file name may be any bytes) replaced by U+FFFD.
 std::string escaped(const std::string& text) {
+  static constexpr const char* kReplacement = "\xEF\xBF\xBD";
   std::string out;
   out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default:
-        // Control bytes are not allowed in XML; anything else (UTF-8 included) passes.
-        if (static_cast<unsigned char>(c) < 32 && c != '\n' && c != '\t') out += '?';
-        else out += c;
+  const auto byte = [&text](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char c = byte(i);
+    if (c < 0x80) {
+      switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c < 32 && c != '\n' && c != '\t' && c != '\r' ? kReplacement : std::string(1, char(c));
+      }
+      ++i;
+      continue;
+    }
+    // A multi-byte sequence: its length from the lead byte, each continuation 10xxxxxx, the
+    // code point in range for its length.
+    const std::size_t n = c >= 0xF0 && c <= 0xF4 ? 4 : c >= 0xE0 ? (c <= 0xEF ? 3 : 0) : c >= 0xC2 && c <= 0xDF ? 2 : 0;
+    std::uint32_t cp = n == 2 ? c & 0x1Fu : n == 3 ? c & 0x0Fu : c & 0x07u;
+    bool ok = n > 0 && i + n <= text.size();
+    for (std::size_t k = 1; ok && k < n; ++k) {
+      ok = (byte(i + k) & 0xC0) == 0x80;
+      cp = (cp << 6) | (byte(i + k) & 0x3Fu);
+    }
+    ok = ok && !(n == 3 && cp < 0x800) && !(n == 4 && (cp < 0x10000 || cp > 0x10FFFF)) &&
+         !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
+    if (ok) {
+      out.append(text, i, n);
+      i += n;
+    } else {
+      out += kReplacement;
+      ++i;
     }
   }
   return out;
@@ -479,7 +518,7 @@ std::string to_html(const Document& d, const std::string& title) {
        "h1 { font-size: 1.5em; } h2 { font-size: 1.2em; margin-top: 1.6em; border-bottom: 1px solid #999; }\n"
        "table { border-collapse: collapse; margin: 0.6em 0; font-size: 0.9em; }\n"
        "th, td { border: 1px solid #bbb; padding: 0.2em 0.5em; text-align: left; vertical-align: top; }\n"
-       "figure { margin: 0.8em 0; } figure img { max-width: 100%; } figcaption { font-size: 0.85em; color: #444; }\n"
+       "figure { margin: 0.8em 0; } figure img { max-width: 100%; height: auto; } figcaption { font-size: 0.85em; color: #444; }\n"
        "section.template svg { display: block; }\n"
        "@media print { section { break-inside: auto; } figure { break-inside: avoid; } }\n"
        "</style>\n</head>\n<body>\n<h1>";
@@ -524,7 +563,8 @@ std::string to_html(const Document& d, const std::string& title) {
         std::string svg = render::to_svg(b.page);
         if (svg.rfind("<?xml", 0) == 0) svg.erase(0, svg.find('\n') + 1);  // not allowed inside a document
         h += "<figure>" + svg + "<figcaption>" + escaped(b.text) +
-             ", at 1:1 when printed at 100 % (check its 10 mm bar)</figcaption></figure>\n";
+             ", drawn in mm at 1:1; to cut from it, print the PDF's template page at 100 % and check its 10 mm "
+             "bar</figcaption></figure>\n";
         break;
       }
     }
@@ -541,30 +581,42 @@ constexpr double kBody = 3.3, kSmall = 2.9, kHeading = 4.8, kTitle = 6.5;  // fo
 constexpr double kLeading = 1.35;  // line height / font size
 
 // Words of `text` broken into lines no wider than `width` mm at `size`; a word wider than
-// the line is cut by characters.
+// the line is cut by characters. O(characters): widths are summed as the text is read.
 std::vector<std::string> wrapped(const std::string& text, double size, double width) {
   std::vector<std::string> lines;
   std::string line;
+  double line_width = 0.0;
+  const double space = render::text_width_mm(" ", size);
   std::size_t i = 0;
-  while (i < text.size()) {
-    const std::size_t end = std::min(text.find(' ', i), text.size());
-    std::string word = text.substr(i, end - i);
+  while (i <= text.size()) {
+    std::size_t end = text.find(' ', i);
+    if (end == std::string::npos) end = text.size();
+    // The word, cut into pieces that each fit a line.
+    std::size_t from = i;
+    while (from < end) {
+      std::size_t to = from;
+      double piece = 0.0;
+      while (to < end) {
+        const double w = render::text_width_mm(std::string(1, text[to]), size);
+        if (to > from && piece + w > width) break;
+        piece += w;
+        ++to;
+      }
+      const bool whole_word = from == i && to == end;
+      if (!line.empty() && (!whole_word || line_width + space + piece > width)) {
+        lines.push_back(std::move(line));
+        line.clear();
+        line_width = 0.0;
+      }
+      if (!line.empty()) {
+        line += ' ';
+        line_width += space;
+      }
+      line.append(text, from, to - from);
+      line_width += piece;
+      from = to;
+    }
     i = end + 1;
-    while (render::text_width_mm(word, size) > width && word.size() > 1) {
-      std::size_t n = word.size() - 1;
-      while (n > 1 && render::text_width_mm(word.substr(0, n), size) > width) --n;
-      if (!line.empty()) lines.push_back(std::move(line));
-      line.clear();
-      lines.push_back(word.substr(0, n));
-      word.erase(0, n);
-    }
-    const std::string candidate = line.empty() ? word : line + " " + word;
-    if (!line.empty() && render::text_width_mm(candidate, size) > width) {
-      lines.push_back(std::move(line));
-      line = word;
-    } else {
-      line = candidate;
-    }
   }
   if (!line.empty() || lines.empty()) lines.push_back(line);
   return lines;
@@ -593,7 +645,10 @@ std::string ascii(const std::string& text) {
         break;
       }
     }
-    if (!spelled) out += text[i++];
+    if (!spelled) {
+      const char c = text[i++];
+      out += c == '\n' || c == '\t' || c == '\r' ? ' ' : c;
+    }
   }
   return out;
 }
@@ -687,12 +742,10 @@ class PageWriter {
     all.insert(all.end(), appended.begin(), appended.end());
     const std::size_t n = all.size();
     for (std::size_t i = 0; i < n; ++i)
-      all[i].labels.push_back({{kMargin, kPageHeight - 10.0},
+      all[i].labels.push_back({{kMargin, all[i].height_mm - 10.0},
                                footer_ + " - page " + std::to_string(i + 1) + " of " + std::to_string(n), kSmall});
     return all;
   }
-
-  [[nodiscard]] std::size_t pages() const { return pages_.size(); }
 
  private:
   static double bottom() { return kPageHeight - kMargin; }
@@ -722,12 +775,20 @@ class PageWriter {
   }
 
   void row(const std::vector<std::string>& cells, const std::vector<double>& width, double pad, bool header) {
+    // A row at most a page high: a cell with more lines ends with a line saying so (the HTML
+    // has the whole text).
+    const auto most = static_cast<std::size_t>((bottom() - kMargin - 2.0) / (kLeading * kSmall)) - 1;
     std::vector<std::vector<std::string>> wrapped_cells;
     std::size_t height = 1;
     for (std::size_t c = 0; c < cells.size(); ++c) {
       // (1e-6 mm of slack: a column as wide as its widest cell keeps that cell on one line.)
-      wrapped_cells.push_back(wrapped(ascii(cells[c]), kSmall, width[c] - 2.0 * pad + 1e-6));
-      height = std::max(height, wrapped_cells.back().size());
+      std::vector<std::string> lines = wrapped(ascii(cells[c]), kSmall, width[c] - 2.0 * pad + 1e-6);
+      if (lines.size() > most) {
+        lines.resize(most);
+        lines.back() = "[cut here: the HTML has the whole text]";
+      }
+      height = std::max(height, lines.size());
+      wrapped_cells.push_back(std::move(lines));
     }
     const double h = kLeading * kSmall * static_cast<double>(height) + 1.0;
     if (y_ + h > bottom()) new_page();

@@ -32,7 +32,8 @@ struct Candidate {
   double seconds = 0.0;
   Workspace after;
   json measurement;
-  json run;  // what its simulate reported (equilibrium, residual, ...)
+  json patch;  // what its patch op reported (material_index, sutures, ...)
+  json run;    // what its simulate reported (equilibrium, residual, ...)
 };
 
 double diameter(double area) { return 2.0 * std::sqrt(area / std::numbers::pi); }
@@ -99,9 +100,9 @@ json Run::execute(const DesignPatchOp& op) {
     PatchOp patch = op.patch;
     patch.params.width = width;
     if (patch.params.min_edge_length > 0.0) patch.params.min_edge_length = width / 5.0;
-    json run;
+    json sewn, run;
     try {
-      execute(patch);
+      sewn = execute(patch);
       run = execute(op.simulate);
       execute(op.measure);
     } catch (const OpCancelled&) {
@@ -117,6 +118,7 @@ json Run::execute(const DesignPatchOp& op) {
     c.measurement = measurements[op.measure.name];
     read_profile(c.measurement, c);
     c.after = workspace;
+    c.patch = std::move(sewn);
     c.run = std::move(run);
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     candidates.push_back(std::move(c));
@@ -251,7 +253,8 @@ json Run::execute(const DesignPatchOp& op) {
   if (!op.plot.empty()) j["plot"] = op.plot.generic_string();
   j["summary"] = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +
                  fixed(value(*chosen), 3) + " (" + reason + ")";
-  // The chosen candidate's run, as its simulate op would report it.
+  // The chosen candidate's patch material and run, as its patch and simulate ops report them.
+  if (chosen->patch.contains("material_index")) j["material_index"] = chosen->patch["material_index"];
   for (const char* key : {"s_reached", "residual", "equilibrium"})
     if (chosen->run.contains(key)) j[key] = chosen->run[key];
   if (chosen->run.contains("warning")) j["warning"] = "the chosen candidate: " + chosen->run["warning"].get<std::string>();

@@ -316,11 +316,11 @@ json Run::execute(const PlanReportOp& op) {
   source.measurements = &measurements;
   source.checks = &checks;
   source.workspace = &workspace;
+  // Both paths are checked before anything is made or written.
+  const std::filesystem::path html = output(op.file), pdf = output(op.pdf);
   const PlanReport r = make_plan_report(
       source, [this](const SnapshotOp& view) { return snapshots.render(view, workspace); }, op.view_width,
       op.view_height);
-  // Both paths are checked before either file is written.
-  const std::filesystem::path html = output(op.file), pdf = output(op.pdf);
   engine::write_file_atomically(html, r.html);
   engine::write_file_atomically(pdf, r.pdf);
   json j = r.summary;

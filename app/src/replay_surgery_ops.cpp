@@ -357,6 +357,9 @@ json Run::execute(const PatchOp& op) {
   const engine::PatchPlan plan = engine::plan_patch(obj.mesh, op.start, op.end, params);
   const std::size_t host_faces = obj.mesh.num_faces();
   const std::size_t offset = engine::append_component(obj.mesh, obj.sim, plan.placed, plan.rest, op.material);
+  // append_component gave the patch a material of its own, the last (the plan report names
+  // patches by it).
+  const int material_index = static_cast<int>(obj.sim.materials.size()) - 1;
   auto shifted = [&](engine::BoundaryChain c) {
     for (auto& v : c.vertices) v = engine::VertexId(v.index() + offset);
     return c;
@@ -392,6 +395,7 @@ json Run::execute(const PatchOp& op) {
             {"patch_vertices", plan.rest.num_vertices()},
             {"patch_faces", plan.rest.num_faces()},
             {"patch_area_mm2", plan.rest.total_area()},
+            {"material_index", material_index},
             {"sutures", sutures}};
   if (!remeshed.is_null()) j["remesh"] = remeshed;
   j["mesh"] = mesh_counts(obj);

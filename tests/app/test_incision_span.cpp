@@ -9,6 +9,7 @@
 #include "sutura/app/op_builders.hpp"
 #include "sutura/app/session.hpp"
 #include "sutura/engine/generators.hpp"
+#include "replay_fixture.hpp"
 
 namespace {
 
@@ -37,6 +38,24 @@ TEST(IncisionSpan, RunsAlongTheAxisPastBothEnds) {
   // Within the path: a margin longer than the tube stops at its ends.
   const sutura::app::IncisionSpan whole = sutura::app::incision_span(mesh, {4, 0, 10}, {4, 0, 30}, 100.0);
   EXPECT_NEAR(whole.length_mm, 40.0, 1.0);
+}
+
+// Incised first: the slit (24 mm long, 48 mm round, longer than the tube's 25 mm ends) is
+// neither the centreline's root nor a path end; the span still runs along the axis.
+TEST(IncisionSpan, AnIncisionsSlitIsNotAnEnd) {
+  const auto dir = sutura::testing::scratch_dir("incision_span", "slit");
+  const sutura::app::ReplayResult r = sutura::testing::replay_text(
+      "{\"format\": \"sutura-session\", \"version\": 3}\n"
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 40, "
+      "\"segments_around\": 32, \"segments_along\": 40}\n"
+      "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 8], [4, 0, 32]]}\n",
+      dir);
+  const auto& mesh = r.workspace.find("t")->mesh;
+  ASSERT_EQ(mesh.boundary_loops().size(), 3u) << "two ends and the slit";
+  const sutura::app::IncisionSpan span = sutura::app::incision_span(mesh, {4, 0, 8}, {4, 0, 32}, 3.0);
+  EXPECT_NEAR(span.centreline.front().z(), 5.0, 0.5);
+  EXPECT_NEAR(span.centreline.back().z(), 35.0, 0.5);
+  for (const Vec3& p : span.centreline) EXPECT_LT(std::hypot(p.x(), p.y()), 1.0) << p.transpose();
 }
 
 TEST(IncisionSpan, RefusesWhatItCannotPlace) {

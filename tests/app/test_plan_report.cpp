@@ -243,6 +243,37 @@ TEST(PlanReport, PdfRasterisesWithEveryPage) {
   }
 }
 
+// The report's PDF: every object where the cross-reference table says, every stream as long
+// as its /Length (poppler repairs a broken table, so rasterising alone would not tell).
+TEST(PlanReport, PdfCrossReferencesHold) {
+  const std::string& pdf = patched().pdf;
+  const std::size_t startxref = pdf.rfind("startxref\n");
+  ASSERT_NE(startxref, std::string::npos);
+  const std::size_t xref = std::stoul(pdf.substr(startxref + 10));
+  ASSERT_EQ(pdf.compare(xref, 5, "xref\n"), 0);
+  std::istringstream table(pdf.substr(xref + 5));
+  int first = -1, count = 0;
+  table >> first >> count;
+  ASSERT_EQ(first, 0);
+  ASSERT_GT(count, 10);
+  std::string offset, generation, kind;
+  table >> offset >> generation >> kind;
+  for (int i = 1; i < count; ++i) {
+    table >> offset >> generation >> kind;
+    ASSERT_EQ(kind, "n");
+    const std::size_t at = std::stoul(offset);
+    const std::string head = std::to_string(i) + " 0 obj\n";
+    ASSERT_EQ(pdf.compare(at, head.size(), head), 0) << "object " << i;
+    const std::size_t end = pdf.find("endobj", at);
+    const std::size_t length = pdf.find("/Length ", at);
+    if (length == std::string::npos || length > end) continue;
+    const std::size_t n = std::stoul(pdf.substr(length + 8));
+    const std::size_t begin = pdf.find("stream\n", length) + 7;
+    EXPECT_TRUE(pdf.compare(begin + n, 9, "endstream") == 0 || pdf.compare(begin + n, 10, "\nendstream") == 0)
+        << "object " << i;
+  }
+}
+
 TEST(PlanReport, IsDeterministic) {
   const Reported again = replayed_into(patched().session, patched().out.parent_path() / "again");
   EXPECT_EQ(again.pdf, patched().pdf);
@@ -279,12 +310,47 @@ TEST(PlanReport, BadFieldsAreNamed) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"plan.pdf\"}").find("file"), std::string::npos);
-  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"../plan.html\"}").find("file"), std::string::npos);
-  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"pdf\": \"p.svg\"}").find("pdf"), std::string::npos);
-  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"view_width\": 10}").find("view_width"),
+  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"plan.pdf\"}").find("field 'file'"), std::string::npos);
+  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"../plan.html\"}").find("field 'file'"), std::string::npos);
+  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"pdf\": \"p.svg\"}").find("field 'pdf'"),
             std::string::npos);
-  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"colour\": 1}").find("colour"), std::string::npos);
+  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"view_width\": 10}").find("field 'view_width'"),
+            std::string::npos);
+  EXPECT_NE(error("{\"op\": \"plan_report\", \"file\": \"p.html\", \"colour\": 1}").find("field 'colour'"),
+            std::string::npos);
+  // The views count against --max-pixels, before the session runs.
+  ReplayOptions o;
+  o.out_dir = sutura::testing::scratch_dir("plan_report", "pixels");
+  o.limits.pixels = 100000;
+  try {
+    (void)replay(parse_session(base + "{\"op\": \"plan_report\", \"file\": \"p.html\"}\n", "s.jsonl"), o);
+    ADD_FAILURE() << "no error";
+  } catch (const SessionError& e) {
+    EXPECT_NE(std::string(e.what()).find("--max-pixels"), std::string::npos) << e.what();
+  }
+}
+
+// Notes and names are any text: the HTML stays well-formed XML (invalid UTF-8, control bytes
+// and non-characters become U+FFFD, markup is escaped), a note of 20,000 characters without a
+// space is laid out in time, cut in the PDF's table and whole in the HTML.
+TEST(PlanReport, AnyTextStaysWellFormed) {
+  const std::string long_word(20000, 'x');
+  const std::string odd = "caf\xC3\xA9 \xFF\xFE bad \xED\xA0\x80 surrogate \xEF\xBF\xBF nonchar \x01 ctl \xE2\x80\x94 dash";
+  json note_line = {{"op", "material"}, {"object", "t"}, {"youngs_modulus", 1.0}, {"note", odd}};
+  json long_line = {{"op", "fix"}, {"object", "t"}, {"boundary", "all"}, {"note", long_word}};
+  const Reported r = replayed(
+      "odd", std::string("{\"format\": \"sutura-session\", \"version\": 3}\n") +
+                 "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+                 "\"segments_around\": 16, \"segments_along\": 10}\n" +
+                 note_line.dump(-1, ' ', false, json::error_handler_t::ignore) + "\n" + long_line.dump() + "\n" +
+                 kReport);
+  const Parsed p = parse(r.html);  // throws when not well-formed
+  const std::string& plan = p.text_by_id.at("plan");
+  EXPECT_NE(plan.find("caf\xC3\xA9"), std::string::npos) << "valid UTF-8 is kept";
+  EXPECT_NE(plan.find("\xE2\x80\x94 dash"), std::string::npos);
+  EXPECT_NE(plan.find(long_word), std::string::npos) << "the HTML has the whole note";
+  EXPECT_NE(r.pdf.find("([cut here: the HTML has the whole text]) Tj"), std::string::npos) << "the PDF's row is at most a page";
+  EXPECT_NE(r.pdf.find("- dash"), std::string::npos) << "the dash spelled out for Helvetica";
 }
 
 // SHA-256 of files against FIPS 180-4's examples.

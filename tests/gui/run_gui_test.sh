@@ -56,15 +56,17 @@ if [ -e "$out/patch_template.pdf" ]; then
   }
 fi
 if [ -e "$out/plan_report.html" ]; then
-  # The report names the recording by its hash when it was written, so the replay's (which
-  # adds nothing to the file) must hold the same sections; poppler must read the PDF.
+  # The report hashes the recording as written when it ran; the script records nothing after
+  # it, so the replay's report must be the same bytes. Poppler must read the PDF.
   grep -q 'id="materials"' "$out/plan_report.html" || {
     echo "gui test: the plan report has no materials section" >&2; exit 1; }
   pdftoppm -r 10 -f 1 -l 1 -png "$out/plan_report.pdf" "$out/plan_report_page" || {
     echo "gui test: poppler cannot read the plan report's PDF" >&2; exit 1; }
-  cmp "$out/plan_report.pdf" "$out/replayed/plan_report.pdf" || {
-    echo "gui test: the replayed plan report differs from the GUI's" >&2
-    exit 1
-  }
+  for f in plan_report.html plan_report.pdf; do
+    cmp "$out/$f" "$out/replayed/$f" || {
+      echo "gui test: the replayed $f differs from the GUI's" >&2
+      exit 1
+    }
+  done
 fi
 echo "gui test: ok ($out)"

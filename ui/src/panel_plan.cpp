@@ -198,13 +198,12 @@ void refresh_patch_preview(GuiState& s, const std::optional<json>& op) {
   }
 }
 
-// Design the width instead of giving it: design_patch with the patch drawn above, relaxed as
-// the Simulate panel would, its lumen measured along the incision (the automatic centreline
-// between the points nearest its two ends). It runs in the
-// background like a simulation and ends in Inspect with the chosen patch.
 // mm of lumen measured beyond each end of the incision.
 constexpr double kDesignMargin = 3.0;
 
+// Design the width instead of giving it: design_patch with the patch drawn above, relaxed as
+// the Simulate panel would, its lumen measured along the incision (app::incision_span). It
+// runs in the background like a simulation and ends in Inspect with the chosen patch.
 void design_controls(GuiState& s, const std::optional<json>& patch) {
   if (!noted_tree_node(s.widgets, "Design the width to a target")) return;
   ImGui::TextWrapped("Tries widths in the range, each sewn in and relaxed under the loads, until the smallest "

@@ -17,7 +17,8 @@ struct IncisionSpan {
   double max_radius_mm = 0.0;
 };
 
-/// The automatic centreline of `mesh` (engine::extract_centreline, one end per open end)
+/// The automatic centreline of `mesh` (engine::extract_centreline, one end per open end, the
+/// root the end of largest vector area, so never an incision's flat slit)
 /// between where `start` and `end` (points on the wall, e.g. an incision's ends, in that
 /// order) project onto the path between two open ends that runs along both, moved
 /// `margin_mm` (>= 0) further out along it, within the path. A path runs along a point within

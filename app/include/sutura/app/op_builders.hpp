@@ -91,8 +91,8 @@ nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_
 /// to s = 1 and 40 more) and a static settle. Two simulate ops, to run one after the other.
 std::vector<nlohmann::json> flap_relaxation_ops(bool collapse_barrier);
 /// What the window's patch design asks for (DesignPatchOp): the smallest lumen area along
-/// `centreline` (a polyline, mm; sections no wider than `max_radius` mm, one per mm of it, at
-/// least 11), within `tolerance` (a fraction), the largest diameter along it at most
+/// `centreline` (a polyline, mm; sections no wider than `max_radius` mm, one per mm of it plus
+/// one, from 11 to 101), within `tolerance` (a fraction), the largest diameter along it at most
 /// `max_bulge` times the diameter at its end, for widths in [width_min, width_max] mm.
 struct DesignTarget {
   double min_area_mm2 = 20.0;

@@ -12,9 +12,10 @@
 //                 posterior), sutures and incisions marked;
 //   lumen         each lumen profile (a measure along a centreline): area against arc length,
 //                 before and after;
-//   measurements  every measurement with before, after and change; every check;
-//   equilibrium   each solve, simulate and design_patch in effect: converged, residual,
-//                 stability;
+//   measurements  every measurement with before, after and change; every check; what
+//                 "before" is (loaded or not) for each object;
+//   equilibrium   each solve, simulate, unload and design_patch in effect: converged,
+//                 residual, stability;
 //   design        each design_patch: the target, the choice and why, every candidate;
 //   template      each sewn-in patch's cutting template (the HTML: inline SVG at 1:1; the
 //                 PDF: a page of its own at 1:1, after the report);
