@@ -8,19 +8,15 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "number_text.hpp"
 #include "sutura/engine/surgery/flat_layout.hpp"
 
 namespace sutura::app {
 
 namespace {
 
+using detail::fixed;
 using engine::Vec2;
-
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
 
 Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()).normalized(); }
 

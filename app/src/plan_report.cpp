@@ -16,6 +16,8 @@
 #include "sutura/app/patch_template.hpp"
 #include "sutura/render/chart.hpp"
 #include "sutura/render/vector_page.hpp"
+#include "design_chart.hpp"
+#include "number_text.hpp"
 #include "sutura_build_id.hpp"
 
 namespace sutura::app {
@@ -23,6 +25,9 @@ namespace sutura::app {
 using nlohmann::json;
 
 namespace {
+
+using detail::fixed;
+using detail::general;
 
 // ---- The document: blocks that both writers lay out -------------------------------------
 //
@@ -43,18 +48,6 @@ struct Block {
   render::Image image;
   render::VectorPage page;  ///< Template: the 1:1 page
 };
-
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
-std::string general(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 std::string signed_percent(double v) {
   char buf[64];
@@ -346,6 +339,13 @@ void design_section(Document& d, const Plan& plan) {
                         fixed(number_at(c, "coarctation_index"), 3), fixed(number_at(c, "bulge"), 3),
                         c.value("meets_target", false) ? "yes" : "no", c.value("within_limits", false) ? "yes" : "no"});
     d.table(std::move(t));
+    try {
+      d.picture(render::draw_chart(design_chart(r)),
+                "Line " + std::to_string(p.line) + ": the quantity sized and the bulge against the patch's width, the "
+                "target band green, the bulge limit red");
+    } catch (const std::invalid_argument& e) {
+      d.paragraph(std::string("No plot: ") + e.what());
+    }
   }
   if (!any) {
     d.section("design", "Patch design");

@@ -14,9 +14,10 @@
 #include <filesystem>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "replay_run.hpp"
+#include "design_chart.hpp"
+#include "number_text.hpp"
 #include "sutura/engine/atomic_file.hpp"
 #include "sutura/render/chart.hpp"
 
@@ -51,14 +52,6 @@ void read_profile(const json& m, Candidate& c) {
     }
   c.coarctation_index = diameter(c.min_area) / distal;
   c.bulge = widest / distal;
-}
-
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << v;
-  return s.str();
 }
 
 }  // namespace
@@ -192,46 +185,6 @@ json Run::execute(const DesignPatchOp& op) {
     }
   }
 
-  if (!plot.empty()) {
-    render::Chart chart;
-    chart.title = std::string(area ? "Smallest lumen area" : "Coarctation index") +
-                  " and bulge against the width: " + status;
-    chart.x_label = "patch width [mm]";
-    chart.y_label = area ? "smallest lumen area [mm2]" : "coarctation index";
-    chart.y2_label = "bulge (widest / distal diameter)";
-    std::vector<const Candidate*> by_width;
-    for (const Candidate& c : candidates) by_width.push_back(&c);
-    std::sort(by_width.begin(), by_width.end(), [](const Candidate* a, const Candidate* b) { return a->width < b->width; });
-    render::ChartSeries lumen, bulge;
-    lumen.label = area ? "smallest lumen area" : "coarctation index";
-    bulge.label = "bulge";
-    bulge.color = {214, 39, 40, 255};
-    bulge.right_axis = true;
-    for (const Candidate* c : by_width) {
-      lumen.points.push_back({c->width, value(*c)});
-      bulge.points.push_back({c->width, c->bulge});
-    }
-    chart.series = {lumen, bulge};
-    chart.bands.push_back({low_end, high_end, false, {200, 232, 200, 255}});
-    if (op.max_bulge) chart.bands.push_back({*op.max_bulge, *op.max_bulge, true, {214, 39, 40, 255}});
-    chart.markers.push_back({chosen->width, "chosen " + fixed(chosen->width, 2) + " mm"});
-    try {
-      const std::vector<std::uint8_t> png = render::encode_png(render::draw_chart(chart));
-      engine::write_file_atomically(plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
-    } catch (...) {
-      restore();
-      throw;
-    }
-  }
-
-  // The chosen candidate's workspace and measurement, as a plain replay of its three ops.
-  workspace = chosen->after;
-  measurements = measurements_before;
-  measurements[op.measure.name] = chosen->measurement;
-  undo_stack.resize(undo_depth);
-  redo_stack.clear();
-
-
   json list = json::array();
   for (const Candidate& c : candidates)
     list.push_back({{"width_mm", c.width},
@@ -258,6 +211,23 @@ json Run::execute(const DesignPatchOp& op) {
   for (const char* key : {"s_reached", "residual", "equilibrium"})
     if (chosen->run.contains(key)) j[key] = chosen->run[key];
   if (chosen->run.contains("warning")) j["warning"] = "the chosen candidate: " + chosen->run["warning"].get<std::string>();
+
+  if (!plot.empty()) {
+    try {
+      const std::vector<std::uint8_t> png = render::encode_png(render::draw_chart(design_chart(j)));
+      engine::write_file_atomically(plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    } catch (...) {
+      restore();
+      throw;
+    }
+  }
+
+  // The chosen candidate's workspace and measurement, as a plain replay of its three ops.
+  workspace = chosen->after;
+  measurements = measurements_before;
+  measurements[op.measure.name] = chosen->measurement;
+  undo_stack.resize(undo_depth);
+  redo_stack.clear();
   return j;
 }
 
