@@ -338,13 +338,19 @@ TEST(PlanReport, AnyTextStaysWellFormed) {
   const std::string odd = "caf\xC3\xA9 \xFF\xFE bad \xED\xA0\x80 surrogate \xEF\xBF\xBF nonchar \x01 ctl \xE2\x80\x94 dash";
   json note_line = {{"op", "material"}, {"object", "t"}, {"youngs_modulus", 1.0}, {"note", odd}};
   json long_line = {{"op", "fix"}, {"object", "t"}, {"boundary", "all"}, {"note", long_word}};
-  const Reported r = replayed(
-      "odd", std::string("{\"format\": \"sutura-session\", \"version\": 3}\n") +
-                 "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
-                 "\"segments_around\": 16, \"segments_along\": 10}\n" +
-                 note_line.dump(-1, ' ', false, json::error_handler_t::ignore) + "\n" + long_line.dump() + "\n" +
-                 kReport);
+  // A file name is any bytes: this one is not UTF-8.
+  const fs::path dir = sutura::testing::scratch_dir("plan_report", "odd");
+  const fs::path session = dir / "plan \xFF\xC3.jsonl";
+  std::ofstream(session, std::ios::binary)
+      << "{\"format\": \"sutura-session\", \"version\": 3}\n"
+         "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+         "\"segments_around\": 16, \"segments_along\": 10}\n"
+      << note_line.dump(-1, ' ', false, json::error_handler_t::ignore) << "\n"
+      << long_line.dump() << "\n"
+      << kReport;
+  const Reported r = replayed_into(session, dir / "out");
   const Parsed p = parse(r.html);  // throws when not well-formed
+  EXPECT_EQ(p.title, "Sutura plan report: plan \xEF\xBF\xBD\xEF\xBF\xBD.jsonl");
   const std::string& plan = p.text_by_id.at("plan");
   EXPECT_NE(plan.find("caf\xC3\xA9"), std::string::npos) << "valid UTF-8 is kept";
   EXPECT_NE(plan.find("\xE2\x80\x94 dash"), std::string::npos);
