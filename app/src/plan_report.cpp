@@ -35,8 +35,11 @@ using detail::general;
 // the HTML and the PDF cannot say different things.
 
 struct Table {
-  std::vector<std::string> header;
+  std::vector<std::string> header;  ///< all empty: a table without a header row
   std::vector<std::vector<std::string>> rows;  ///< each as long as the header
+  [[nodiscard]] bool has_header() const {
+    return std::any_of(header.begin(), header.end(), [](const std::string& s) { return !s.empty(); });
+  }
 };
 
 struct Block {
@@ -537,9 +540,7 @@ std::string to_html(const Document& d, const std::string& title) {
         break;
       case Block::Kind::Table: {
         h += "<table>\n";
-        const bool header = std::any_of(b.table.header.begin(), b.table.header.end(),
-                                        [](const std::string& s) { return !s.empty(); });
-        if (header) {
+        if (b.table.has_header()) {
           h += "<thead><tr>";
           for (const std::string& c : b.table.header) h += "<th>" + escaped(c) + "</th>";
           h += "</tr></thead>\n";
@@ -708,9 +709,8 @@ class PageWriter {
         break;
       }
     }
-    const bool header = std::any_of(t.header.begin(), t.header.end(), [](const std::string& s) { return !s.empty(); });
     y_ += 1.0;
-    if (header) row(t.header, width, pad, true);
+    if (t.has_header()) row(t.header, width, pad, true);
     for (const auto& r : t.rows) row(r, width, pad, false);
     y_ += 2.0;
   }
@@ -810,8 +810,8 @@ class PageWriter {
   double y_ = kMargin;
 };
 
-std::vector<render::VectorPage> to_pages(const Document& d, const std::string& title, const std::string& footer) {
-  PageWriter w(footer);
+std::vector<render::VectorPage> to_pages(const Document& d, const std::string& title) {
+  PageWriter w(title);
   w.title(title);
   std::vector<render::VectorPage> templates;
   for (std::size_t i = 0; i < d.blocks.size(); ++i) {
@@ -862,7 +862,7 @@ PlanReport make_plan_report(const PlanReportSource& s, const SnapshotDrawer& dra
   const std::string title = "Sutura plan report: " + s.session_file.filename().string();
   PlanReport r;
   r.html = to_html(d, title);
-  const std::vector<render::VectorPage> pages = to_pages(d, title, title);
+  const std::vector<render::VectorPage> pages = to_pages(d, title);
   r.pdf = render::to_pdf(pages, title);
   json sections = json::array();
   std::size_t pictures = 0;
