@@ -66,16 +66,10 @@ void check_chain(const SurfaceMesh& mesh, const BoundaryChain& c, const std::str
   }
 }
 
-}  // namespace
-
-SuturePlacement parse_suture_placement(const std::string& name) {
-  if (name == "mean") return SuturePlacement::Mean;
-  if (name == "onto_b") return SuturePlacement::OntoB;
-  throw InvalidArgument("unknown suture placement '" + name + "' (expected mean or onto_b)");
-}
-
-JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
-                const JoinParams& params) {
+// Phase 1: each chain is a run of boundary edges in the boundary direction, no edge is
+// sutured twice, and loops pair with loops.
+void check_pairs(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
+                 const JoinParams& params) {
   if (!params.held.empty() && params.held.size() != mesh.num_vertices())
     throw InvalidArgument("join: " + std::to_string(params.held.size()) + " held flags for " +
                           std::to_string(mesh.num_vertices()) + " vertices");
@@ -105,137 +99,157 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
       }
     }
   }
+}
 
-  detail::TriangleSoup soup(mesh);
-  // Where both chains end at one shared vertex e (a slit end, or the corner where a flap
-  // meets its bed), the suture closes e's fan like a cone: the faces of e between its two
-  // chain edges close up around it, which needs at least three of them (with two, merging the
-  // neighbours would stack both faces onto one edge). Too small a fan gets a vertex on the
-  // outer edge of its face with the widest angle at e, where that angle's bisector meets it,
-  // which adds one face at e each time and halves that angle: the cone's faces stay as wide
-  // as they can (docs/remeshing.md, the subclavian flap).
-  auto widen_fan = [&soup](int e) {
-    for (int guard = 0; guard < 4; ++guard) {
-      int count = 0, widest = -1;
-      double widest_angle = -1.0;
-      for (std::size_t f = 0; f < soup.num_faces(); ++f) {
-        const FaceIndices& t = soup.face(f);
-        for (int k = 0; k < 3; ++k)
-          if (t[k] == e) {
-            ++count;
-            const Vec3 u = soup.position(t[(k + 1) % 3]) - soup.position(e);
-            const Vec3 w = soup.position(t[(k + 2) % 3]) - soup.position(e);
-            const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
-            if (angle > widest_angle) widest_angle = angle, widest = int(f);
-          }
-      }
-      if (count >= 3 || widest < 0) return;
-      const FaceIndices& t = soup.face(widest);
-      int k = 0;
-      while (t[k] != e) ++k;
-      const int u = t[(k + 1) % 3], w = t[(k + 2) % 3];
-      const double lu = (soup.position(u) - soup.position(e)).norm();
-      const double lw = (soup.position(w) - soup.position(e)).norm();
-      // The bisector divides uw as eu : ew (a zero-area face: at its midpoint).
-      soup.split_edge(u, w, lu + lw > 0.0 ? lu / (lu + lw) : 0.5);
+// Phase 2, on the soup before any pairing. Where both chains end at one shared vertex e (a slit
+// end, or the corner where a flap meets its bed), the suture closes e's fan like a cone: the
+// faces of e between its two chain edges close up around it, which needs at least three of them
+// (with two, merging the neighbours would stack both faces onto one edge). Too small a fan gets
+// a vertex on the outer edge of its face with the widest angle at e, where that angle's
+// bisector meets it, which adds one face at e each time and halves that angle: the cone's faces
+// stay as wide as they can (docs/remeshing.md, the subclavian flap).
+void widen_fan(detail::TriangleSoup& soup, int e) {
+  for (int guard = 0; guard < 4; ++guard) {
+    int count = 0, widest = -1;
+    double widest_angle = -1.0;
+    for (std::size_t f = 0; f < soup.num_faces(); ++f) {
+      const FaceIndices& t = soup.face(f);
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == e) {
+          ++count;
+          const Vec3 u = soup.position(t[(k + 1) % 3]) - soup.position(e);
+          const Vec3 w = soup.position(t[(k + 2) % 3]) - soup.position(e);
+          const double angle = std::atan2(u.cross(w).norm(), u.dot(w));
+          if (angle > widest_angle) widest_angle = angle, widest = int(f);
+        }
     }
-  };
+    if (count >= 3 || widest < 0) return;
+    const FaceIndices& t = soup.face(widest);
+    int k = 0;
+    while (t[k] != e) ++k;
+    const int u = t[(k + 1) % 3], w = t[(k + 2) % 3];
+    const double lu = (soup.position(u) - soup.position(e)).norm();
+    const double lw = (soup.position(w) - soup.position(e)).norm();
+    // The bisector divides uw as eu : ew (a zero-area face: at its midpoint).
+    soup.split_edge(u, w, lu + lw > 0.0 ? lu / (lu + lw) : 0.5);
+  }
+}
+
+void widen_zipper_fans(detail::TriangleSoup& soup, const std::vector<SuturePair>& pairs) {
   for (const auto& [a, b] : pairs) {
     if (a.closed) continue;
-    if (a.vertices.front() == b.vertices.back()) widen_fan(a.vertices.front().value);
-    if (a.vertices.back() == b.vertices.front()) widen_fan(a.vertices.back().value);
+    if (a.vertices.front() == b.vertices.back()) widen_fan(soup, a.vertices.front().value);
+    if (a.vertices.back() == b.vertices.front()) widen_fan(soup, a.vertices.back().value);
   }
-  JoinResult result;
-  std::vector<std::vector<std::pair<int, int>>> pair_vertices(pairs.size());
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const auto& [a, b] = pairs[p];
-    // A runs along a; B runs along b backwards, so A[i] and B[i] are partners. A closed loop
-    // is opened at its first vertex, which both ends of the list repeat.
-    std::vector<VertexId> A = a.vertices, B(b.vertices.rbegin(), b.vertices.rend());
-    if (a.closed) {
-      A.push_back(A.front());
-      // B = b0, b_{n-1}, ..., b1, b0
-      B.assign(1, b.vertices.front());
-      for (std::size_t i = b.vertices.size() - 1; i >= 1; --i) B.push_back(b.vertices[i]);
-      B.push_back(b.vertices.front());
-    }
-    SutureReport rep;
-    rep.vertices_a = a.vertices.size();
-    rep.vertices_b = b.vertices.size();
-    rep.length_a = chain_length(mesh, a);
-    rep.length_b = chain_length(mesh, b);
-    const std::vector<double> sa = arc_params(mesh, A), sb = arc_params(mesh, B);
-    std::vector<int> As(A.size()), Bs(B.size());
-    for (std::size_t i = 0; i < A.size(); ++i) As[i] = A[i].value;
-    for (std::size_t i = 0; i < B.size(); ++i) Bs[i] = B[i].value;
-    // Pair by arc length. Vertices of the two chains at (nearly) the same normalised arc
-    // length are partners; every other vertex gets a partner inserted on the other chain's
-    // edge at its arc length. Pairing existing vertices that lie apart would suture rest
-    // points that do not correspond and leave a shear defect along the seam; a partner is
-    // accepted within kMatch of the local spacing (the sliver guard of the insertion). 0.4 by
-    // measurement: at 0.2 two loops of 32 and 34 vertices got seam triangles a tenth of the
-    // spacing wide that stalled the relaxation of an anastomosis; at 0.5 the two strips of
-    // 4 and 6 edges pair vertices 1/12 of the width apart and the seam no longer stays
-    // symmetric (the closed-form check of the Fig. 2.4 session fails).
-    constexpr double kMatch = 0.4;
-    auto spacing = [](const std::vector<double>& t, std::size_t i) {
-      return std::min(t[i] - t[i - 1], t[i + 1] - t[i]);
-    };
-    if (params.pairing == JoinPairing::InOrder && As.size() != Bs.size())
-      throw InvalidArgument(suture_name(p) + ": chains of " + std::to_string(a.vertices.size()) +
-                            " and " + std::to_string(b.vertices.size()) +
-                            " vertices cannot be paired in order");
-    std::vector<int> RA{As.front()}, RB{Bs.front()};
-    double ta_last = 0.0, tb_last = 0.0;
-    std::size_t i = 1, j = 1;
-    const std::size_t na = As.size(), nb = Bs.size();
-    if (params.pairing == JoinPairing::InOrder) {  // partners as given: nothing to insert
-      RA.assign(As.begin(), As.end() - 1);
-      RB.assign(Bs.begin(), Bs.end() - 1);
-      i = na - 1;
-      j = nb - 1;
-    }
-    while (i + 1 < na || j + 1 < nb) {
-      const double ta = i + 1 < na ? sa[i] : 2.0, tb = j + 1 < nb ? sb[j] : 2.0;
-      const double tol = kMatch * std::min(i + 1 < na ? spacing(sa, i) : 1.0,
-                                           j + 1 < nb ? spacing(sb, j) : 1.0);
-      if (std::abs(ta - tb) <= tol) {
-        RA.push_back(As[i++]);
-        RB.push_back(Bs[j++]);
-        ta_last = ta, tb_last = tb;
-      } else if (ta < tb) {
-        // Partner for A[i] on B's edge (last B vertex, B[j]).
-        const double t = (ta - tb_last) / (sb[j] - tb_last);
-        RB.push_back(soup.split_edge(RB.back(), Bs[j], t));
-        RA.push_back(As[i++]);
-        ++rep.inserted_b;
-        ta_last = tb_last = ta;
-      } else {
-        const double t = (tb - ta_last) / (sa[i] - ta_last);
-        RA.push_back(soup.split_edge(RA.back(), As[i], t));
-        RB.push_back(Bs[j++]);
-        ++rep.inserted_a;
-        ta_last = tb_last = tb;
-      }
-    }
-    RA.push_back(As.back());
-    RB.push_back(Bs.back());
-    As = std::move(RA);
-    Bs = std::move(RB);
-    for (std::size_t i = 0; i < As.size(); ++i) {
-      pair_vertices[p].emplace_back(As[i], Bs[i]);
-      rep.max_gap = std::max(rep.max_gap, (soup.position(As[i]) - soup.position(Bs[i])).norm());
-    }
-    result.sutures.push_back(rep);
-  }
+}
 
-  // Merge partners (union-find: n >= 3 copies when sutures share vertices).
-  UnionFind uf(soup.num_vertices());
-  for (const auto& pv : pair_vertices)
-    for (const auto& [x, y] : pv) uf.unite(x, y);
-  std::vector<int> new_id(soup.num_vertices(), -1);
-  std::vector<std::vector<int>> members;
-  for (std::size_t v = 0; v < soup.num_vertices(); ++v) {
+struct PairedSuture {
+  std::vector<std::pair<int, int>> partners;  ///< soup vertices (a copy, b copy), in order
+  SutureReport report;
+};
+
+// Phase 3: the partners of one suture, by arc length; inserts partners into the soup.
+PairedSuture pair_by_arc_length(const SurfaceMesh& mesh, detail::TriangleSoup& soup,
+                                const SuturePair& pair, std::size_t p,
+                                const JoinParams& params) {
+  PairedSuture out;
+  const auto& [a, b] = pair;
+  // A runs along a; B runs along b backwards, so A[i] and B[i] are partners. A closed loop
+  // is opened at its first vertex, which both ends of the list repeat.
+  std::vector<VertexId> A = a.vertices, B(b.vertices.rbegin(), b.vertices.rend());
+  if (a.closed) {
+    A.push_back(A.front());
+    // B = b0, b_{n-1}, ..., b1, b0
+    B.assign(1, b.vertices.front());
+    for (std::size_t i = b.vertices.size() - 1; i >= 1; --i) B.push_back(b.vertices[i]);
+    B.push_back(b.vertices.front());
+  }
+  SutureReport& rep = out.report;
+  rep.vertices_a = a.vertices.size();
+  rep.vertices_b = b.vertices.size();
+  rep.length_a = chain_length(mesh, a);
+  rep.length_b = chain_length(mesh, b);
+  const std::vector<double> sa = arc_params(mesh, A), sb = arc_params(mesh, B);
+  std::vector<int> As(A.size()), Bs(B.size());
+  for (std::size_t i = 0; i < A.size(); ++i) As[i] = A[i].value;
+  for (std::size_t i = 0; i < B.size(); ++i) Bs[i] = B[i].value;
+  // Pair by arc length. Vertices of the two chains at (nearly) the same normalised arc
+  // length are partners; every other vertex gets a partner inserted on the other chain's
+  // edge at its arc length. Pairing existing vertices that lie apart would suture rest
+  // points that do not correspond and leave a shear defect along the seam; a partner is
+  // accepted within kMatch of the local spacing (the sliver guard of the insertion). 0.4 by
+  // measurement: at 0.2 two loops of 32 and 34 vertices got seam triangles a tenth of the
+  // spacing wide that stalled the relaxation of an anastomosis; at 0.5 the two strips of
+  // 4 and 6 edges pair vertices 1/12 of the width apart and the seam no longer stays
+  // symmetric (the closed-form check of the Fig. 2.4 session fails).
+  constexpr double kMatch = 0.4;
+  auto spacing = [](const std::vector<double>& t, std::size_t i) {
+    return std::min(t[i] - t[i - 1], t[i + 1] - t[i]);
+  };
+  if (params.pairing == JoinPairing::InOrder && As.size() != Bs.size())
+    throw InvalidArgument(suture_name(p) + ": chains of " + std::to_string(a.vertices.size()) +
+                          " and " + std::to_string(b.vertices.size()) +
+                          " vertices cannot be paired in order");
+  std::vector<int> RA{As.front()}, RB{Bs.front()};
+  double ta_last = 0.0, tb_last = 0.0;
+  std::size_t i = 1, j = 1;
+  const std::size_t na = As.size(), nb = Bs.size();
+  if (params.pairing == JoinPairing::InOrder) {  // partners as given: nothing to insert
+    RA.assign(As.begin(), As.end() - 1);
+    RB.assign(Bs.begin(), Bs.end() - 1);
+    i = na - 1;
+    j = nb - 1;
+  }
+  while (i + 1 < na || j + 1 < nb) {
+    const double ta = i + 1 < na ? sa[i] : 2.0, tb = j + 1 < nb ? sb[j] : 2.0;
+    const double tol = kMatch * std::min(i + 1 < na ? spacing(sa, i) : 1.0,
+                                         j + 1 < nb ? spacing(sb, j) : 1.0);
+    if (std::abs(ta - tb) <= tol) {
+      RA.push_back(As[i++]);
+      RB.push_back(Bs[j++]);
+      ta_last = ta, tb_last = tb;
+    } else if (ta < tb) {
+      // Partner for A[i] on B's edge (last B vertex, B[j]).
+      const double t = (ta - tb_last) / (sb[j] - tb_last);
+      RB.push_back(soup.split_edge(RB.back(), Bs[j], t));
+      RA.push_back(As[i++]);
+      ++rep.inserted_b;
+      ta_last = tb_last = ta;
+    } else {
+      const double t = (tb - ta_last) / (sa[i] - ta_last);
+      RA.push_back(soup.split_edge(RA.back(), As[i], t));
+      RB.push_back(Bs[j++]);
+      ++rep.inserted_a;
+      ta_last = tb_last = tb;
+    }
+  }
+  RA.push_back(As.back());
+  RB.push_back(Bs.back());
+  As = std::move(RA);
+  Bs = std::move(RB);
+  for (std::size_t i = 0; i < As.size(); ++i) {
+    out.partners.emplace_back(As[i], Bs[i]);
+    rep.max_gap = std::max(rep.max_gap, (soup.position(As[i]) - soup.position(Bs[i])).norm());
+  }
+  return out;
+}
+
+// The soup's vertices grouped into the joined mesh's vertices.
+struct Groups {
+  std::vector<int> new_id;                ///< soup vertex -> joined vertex
+  std::vector<std::vector<int>> members;  ///< joined vertex -> its soup copies, ascending
+};
+
+// Phase 4: partners merge (union-find: n >= 3 copies when sutures share vertices).
+Groups merge_partners(std::size_t num_vertices, const std::vector<PairedSuture>& sutures) {
+  UnionFind uf(num_vertices);
+  for (const PairedSuture& s : sutures)
+    for (const auto& [x, y] : s.partners) uf.unite(x, y);
+  Groups g;
+  std::vector<int>& new_id = g.new_id;
+  std::vector<std::vector<int>>& members = g.members;
+  new_id.assign(num_vertices, -1);
+  for (std::size_t v = 0; v < num_vertices; ++v) {
     const int r = uf.find(int(v));
     if (new_id[r] < 0) {
       new_id[r] = int(members.size());
@@ -244,20 +258,33 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
     new_id[v] = new_id[r];
     members[new_id[v]].push_back(int(v));
   }
-  // Where each copy goes: OntoB moves every copy to its group's b copies and carries the
-  // rest of the mesh along as rigidly as possible (free vertices follow, held ones stay);
-  // Mean moves nothing but the copies, which meet at their mean below.
-  std::vector<Vec3> moved(soup.num_vertices());
+  return g;
+}
+
+struct Placement {
+  std::vector<Vec3> moved;      ///< per soup vertex, before copies meet at their mean
+  std::vector<bool> displaced;  ///< moved by the placement
+};
+
+// Phase 5, where each copy goes: OntoB moves every copy to its group's b copies and carries the
+// rest of the mesh along as rigidly as possible (free vertices follow, held ones stay);
+// Mean moves nothing but the copies, which meet at their mean below.
+Placement place_copies(const detail::TriangleSoup& soup, const Groups& groups,
+                       const std::vector<PairedSuture>& sutures, const JoinParams& params) {
+  Placement out;
+  std::vector<Vec3>& moved = out.moved;
+  moved.resize(soup.num_vertices());
   for (std::size_t v = 0; v < soup.num_vertices(); ++v) moved[v] = soup.position(int(v));
-  std::vector<bool> displaced(soup.num_vertices(), false);
+  std::vector<bool>& displaced = out.displaced;
+  displaced.assign(soup.num_vertices(), false);
   if (params.placement == SuturePlacement::OntoB) {
     std::vector<bool> on_b(soup.num_vertices(), false);
-    for (const auto& pv : pair_vertices)
-      for (const auto& [x, y] : pv) on_b[y] = true;
+    for (const PairedSuture& s : sutures)
+      for (const auto& [x, y] : s.partners) on_b[y] = true;
     std::vector<bool> prescribed(soup.num_vertices(), false);
     std::vector<Vec3> value(soup.num_vertices(), Vec3::Zero());
     for (std::size_t v = 0; v < params.held.size(); ++v) prescribed[v] = params.held[v];
-    for (const auto& mem : members) {
+    for (const auto& mem : groups.members) {
       if (mem.size() < 2) continue;
       Vec3 target = Vec3::Zero();
       int count = 0;
@@ -284,6 +311,16 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
       moved[v] = placed[v];
     }
   }
+  return out;
+}
+
+// Phase 6: the joined mesh, its maps (each vertex its copies' parents' mean) and seams.
+void assemble(const detail::TriangleSoup& soup, const Groups& groups, const Placement& placement,
+              const std::vector<PairedSuture>& sutures, JoinResult& result) {
+  const std::vector<int>& new_id = groups.new_id;
+  const std::vector<std::vector<int>>& members = groups.members;
+  const std::vector<Vec3>& moved = placement.moved;
+  const std::vector<bool>& displaced = placement.displaced;
   const EditMaps& sm = soup.maps();
   std::vector<Vec3> positions(members.size());
   EditMaps maps;
@@ -327,11 +364,35 @@ JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
                           "they do not cross other sutures");
   }
   result.maps = std::move(maps);
-  for (const auto& pv : pair_vertices) {
+  for (const PairedSuture& s : sutures) {
     std::vector<VertexId> seam;
-    for (const auto& [x, y] : pv) seam.emplace_back(new_id[x]);
+    for (const auto& [x, y] : s.partners) seam.emplace_back(new_id[x]);
     result.seams.push_back(std::move(seam));
   }
+}
+
+}  // namespace
+
+SuturePlacement parse_suture_placement(const std::string& name) {
+  if (name == "mean") return SuturePlacement::Mean;
+  if (name == "onto_b") return SuturePlacement::OntoB;
+  throw InvalidArgument("unknown suture placement '" + name + "' (expected mean or onto_b)");
+}
+
+JoinResult join(const SurfaceMesh& mesh, const std::vector<SuturePair>& pairs,
+                const JoinParams& params) {
+  check_pairs(mesh, pairs, params);
+  detail::TriangleSoup soup(mesh);
+  widen_zipper_fans(soup, pairs);
+  JoinResult result;
+  std::vector<PairedSuture> sutures;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    sutures.push_back(pair_by_arc_length(mesh, soup, pairs[p], p, params));
+    result.sutures.push_back(sutures.back().report);
+  }
+  const Groups groups = merge_partners(soup.num_vertices(), sutures);
+  const Placement placement = place_copies(soup, groups, sutures, params);
+  assemble(soup, groups, placement, sutures, result);
   return result;
 }
 
