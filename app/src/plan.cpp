@@ -166,6 +166,8 @@ std::string describe_action(const json& j) {
   }
   if (op == "remesh") {
     std::string out = "Remesh " + object + (j.contains("near") ? " near the given points" : "");
+    if (has_number(j, "below_angle"))
+      out += " where an angle is below " + number(j["below_angle"].get<double>()) + " degrees";
     if (has_number(j, "target_edge_length"))
       out += " to " + number(j["target_edge_length"].get<double>()) + " mm edges";
     return out;

@@ -480,6 +480,15 @@ json Run::execute(const RemeshOp& op) {
       throw std::runtime_error("near: no face of '" + op.object + "' has a corner within " +
                                std::to_string(op.radius) + " mm of the points");
   }
+  if (op.below_angle > 0.0) {
+    p.region = engine::faces_near_small_angles(obj.mesh, op.below_angle, op.radius);
+    if (p.region->empty()) {  // nothing to do: the object stays as it is
+      const engine::MeshQuality q = engine::mesh_quality(obj.mesh);
+      return {{"object", op.object}, {"faces", 0}, {"below_angle_deg", op.below_angle},
+              {"min_angle_deg", q.min_angle_deg}, {"mesh", mesh_counts(obj)},
+              {"summary", "no face of '" + op.object + "' has an angle below the limit; unchanged"}};
+    }
+  }
   p.target_edge_length = op.target_edge_length > 0.0
                              ? op.target_edge_length
                              : engine::mean_edge_length(obj.mesh, p.region.value_or(std::vector<engine::FaceId>{}));

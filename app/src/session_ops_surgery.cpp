@@ -268,13 +268,21 @@ DistanceOp parse_distance(Fields& f) {
 RemeshOp parse_remesh(Fields& f) {
   RemeshOp op;
   op.object = object_name(f);
+  if (f.has("near") && f.has("below_angle"))
+    f.fail("below_angle", "give either near or below_angle (the region is around one or the other)");
   if (f.has("near")) {
     op.near = points(f, "near");
     if (op.near.empty()) f.fail("near", "give at least one point");
     op.radius = f.optional_positive("radius", 1.0);
     if (!f.has("radius")) f.fail("radius", "missing: the region is the faces within radius mm of near");
+  } else if (f.has("below_angle")) {
+    op.below_angle = f.optional_number("below_angle", 0.0);
+    if (!(op.below_angle > 0.0 && op.below_angle <= 60.0)) f.fail("below_angle", "must be in (0, 60] degrees");
+    op.radius = f.optional_positive("radius", 1.0);
+    if (!f.has("radius"))
+      f.fail("radius", "missing: the region is the faces within radius mm of those with a smaller angle than below_angle");
   } else if (f.has("radius")) {
-    f.fail("radius", "goes with near (the polyline or point the region is around)");
+    f.fail("radius", "goes with near or below_angle (what the region is around)");
   }
   if (f.has("target_edge_length")) op.target_edge_length = f.optional_positive("target_edge_length", 1.0);
   op.grading = f.optional_number("grading", 1.0);

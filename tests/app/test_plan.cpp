@@ -130,6 +130,8 @@ TEST(Plan, DescribesEachOpInWords) {
             "Pressurise 'aorta' before surgery (static solve: the pre-operative shape)");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "solve", "objects": ["a", "b", "c"], "load_factor": 0.5})")),
             "Solve 'a', 'b' and 'c' for equilibrium up to load factor 0.5");
+  EXPECT_EQ(describe_action(json::parse(R"({"op": "remesh", "object": "aorta", "below_angle": 20, "radius": 0.6})")),
+            "Remesh 'aorta' where an angle is below 20 degrees");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "incise", "object": "aorta", "points": [[0,0,0],[1,0,0],[2,0,0]]})")),
             "Incise 'aorta' through 3 points, cut through");
   EXPECT_EQ(describe_action(json::parse(R"({"op": "incise", "object": "a", "points": [[0,0,0],[1,0,0]], "mode": "snap"})")),

@@ -11,6 +11,7 @@
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/app/session.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace {
 
@@ -277,6 +278,58 @@ TEST(SurgeryOps, RemeshOpKeepsAPressurisedEquilibrium) {
   EXPECT_LT(std::abs(after - before), 0.01 * before) << before << " -> " << after;
 }
 
+// "below_angle": a flat plate (1 mm squares, 45-degree triangles) with one vertex pushed
+// towards its neighbour, its rim held: only the faces around the small angles are remeshed,
+// the smallest angle rises past the limit, and the unstressed plate stays flat. A plate with
+// no small angle is left exactly as it was.
+TEST(SurgeryOps, RemeshOpBelowAnAngleRemeshesAroundTheSmallAnglesOnly) {
+  const auto plate = [](const fs::path& dir, bool sliver) {
+    std::ofstream obj(dir / "plate.obj");
+    for (int j = 0; j <= 10; ++j)
+      for (int i = 0; i <= 10; ++i)
+        obj << "v " << ((sliver && i == 5 && j == 5) ? 4.3 : double(i)) << " "
+            << ((sliver && i == 5 && j == 5) ? 5.05 : double(j)) << " 0\n";
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 10; ++i) {
+        const int v = j * 11 + i + 1;
+        obj << "f " << v << " " << v + 1 << " " << v + 12 << "\nf " << v << " " << v + 12 << " " << v + 11 << "\n";
+      }
+  };
+  const std::string session =
+      kHeader2 +
+      "{\"op\": \"load\", \"object\": \"p\", \"file\": \"plate.obj\"}\n"
+      "{\"op\": \"material\", \"object\": \"p\", \"youngs_modulus\": 1, \"poisson_ratio\": 0.3, \"thickness\": 0.1}\n"
+      "{\"op\": \"fix\", \"object\": \"p\", \"boundary\": \"all\"}\n"
+      "{\"op\": \"remesh\", \"object\": \"p\", \"below_angle\": 20, \"radius\": 0.5}\n";
+  const auto remesh_action = [](const ReplayResult& r) {
+    for (const auto& a : r.report["actions"])
+      if (a["op"] == "remesh") return a;
+    return nlohmann::json();
+  };
+  const fs::path even = scratch("below_angle_none");
+  plate(even, false);
+  const ReplayResult kept = sutura::testing::replay_text(session, even);
+  const nlohmann::json skipped = remesh_action(kept);
+  ASSERT_FALSE(skipped.is_null());
+  EXPECT_EQ(skipped["faces"].get<int>(), 0);
+  EXPECT_NEAR(skipped["min_angle_deg"].get<double>(), 45.0, 1e-9);
+  EXPECT_EQ(kept.workspace.find("p")->mesh.num_faces(), 200u);
+
+  const fs::path dir = scratch("below_angle");
+  plate(dir, true);
+  const ReplayResult r = sutura::testing::replay_text(session, dir);
+  const nlohmann::json remeshed = remesh_action(r);
+  ASSERT_FALSE(remeshed.is_null());
+  const int region = remeshed["before"]["faces"].get<int>();
+  EXPECT_GT(region, 0);
+  EXPECT_LT(region, 40);  // the faces touching the pushed vertex's neighbourhood, not the plate
+  EXPECT_LT(remeshed["before"]["min_angle_deg"].get<double>(), 20.0);
+  EXPECT_GT(remeshed["after"]["min_angle_deg"].get<double>(), 20.0);
+  const SceneObject& p = *r.workspace.find("p");
+  EXPECT_GT(sutura::engine::mesh_quality(p.mesh).min_angle_deg, 20.0);
+  for (const auto& x : p.mesh.positions()) EXPECT_EQ(x.z(), 0.0);
+}
+
 TEST(SurgeryOps, RemeshOpRefusesBadRegionsAndLengths) {
   std::string e = failure(kHeader2 + kTube +
                               "{\"op\": \"remesh\", \"object\": \"t\", \"near\": [[100, 0, 0]], \"radius\": 1}\n",
@@ -288,6 +341,18 @@ TEST(SurgeryOps, RemeshOpRefusesBadRegionsAndLengths) {
   EXPECT_NE(e.find("target_edge_length"), std::string::npos) << e;
   e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"radius\": 2}\n", 3);
   EXPECT_NE(e.find("radius"), std::string::npos) << e;
+  e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"below_angle\": 20}\n", 3);
+  EXPECT_NE(e.find("radius"), std::string::npos) << e;
+  for (const char* bad : {"0", "61", "-3"}) {
+    e = failure(kHeader2 + kTube + "{\"op\": \"remesh\", \"object\": \"t\", \"below_angle\": " + bad +
+                    ", \"radius\": 1}\n",
+                3);
+    EXPECT_NE(e.find("below_angle"), std::string::npos) << e;
+  }
+  e = failure(kHeader2 + kTube +
+                  "{\"op\": \"remesh\", \"object\": \"t\", \"near\": [[4, 0, 10]], \"below_angle\": 20, \"radius\": 1}\n",
+              3);
+  EXPECT_NE(e.find("below_angle"), std::string::npos) << e;
 }
 
 // Version 1 sessions keep the raw trace of a cut-through incision (they were recorded before

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
+#include <queue>
 #include <string>
 
 #include "cgal_remesh.hpp"
@@ -120,6 +123,53 @@ std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vect
   for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
     const auto fv = mesh.face_vertices(FaceId(f));
     if (near[fv[0].index()] || near[fv[1].index()] || near[fv[2].index()]) out.emplace_back(f);
+  }
+  return out;
+}
+
+std::vector<FaceId> faces_near_small_angles(const SurfaceMesh& mesh, double below_deg,
+                                            double radius) {
+  if (!(below_deg > 0.0 && below_deg <= 60.0))
+    throw InvalidArgument("below_angle must be in (0, 60] degrees, got " + std::to_string(below_deg));
+  if (!(std::isfinite(radius) && radius >= 0.0))
+    throw InvalidArgument("radius must be a finite length >= 0 mm, got " + std::to_string(radius));
+  const std::size_t nv = mesh.num_vertices(), nf = mesh.num_faces();
+  // Edge-path distance from the small-angled faces' corners (multi-source Dijkstra).
+  std::vector<std::vector<std::pair<std::size_t, double>>> adjacent(nv);
+  std::vector<double> distance(nv, std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto v = mesh.face_vertices(FaceId(f));
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = v[k].index(), b = v[(k + 1) % 3].index();
+      const double l = (mesh.position(v[k]) - mesh.position(v[(k + 1) % 3])).norm();
+      adjacent[a].emplace_back(b, l);
+      adjacent[b].emplace_back(a, l);
+    }
+    if (smallest_angle_deg(mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])) < below_deg)
+      for (int k = 0; k < 3; ++k)
+        if (distance[v[k].index()] > 0.0) {
+          distance[v[k].index()] = 0.0;
+          queue.emplace(0.0, v[k].index());
+        }
+  }
+  while (!queue.empty()) {
+    const auto [d, a] = queue.top();
+    queue.pop();
+    if (d > distance[a]) continue;
+    for (const auto& [b, l] : adjacent[a])
+      if (d + l <= radius && d + l < distance[b]) {
+        distance[b] = d + l;
+        queue.emplace(d + l, b);
+      }
+  }
+  std::vector<FaceId> out;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const auto v = mesh.face_vertices(FaceId(f));
+    if (std::isfinite(distance[v[0].index()]) || std::isfinite(distance[v[1].index()]) ||
+        std::isfinite(distance[v[2].index()]))
+      out.emplace_back(f);
   }
   return out;
 }

@@ -1,6 +1,7 @@
 // Constrained local remeshing (remesh.hpp) and the transfer of state and rest shape across it.
 #include "sutura/engine/surgery/remesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -149,6 +150,57 @@ TEST(Remesh, CornersOfThinFacesMoveAndTheSmallestAngleNeverFalls) {
   std::printf("smallest angle: %.2f deg without raising, %.2f deg with\n", smallest[0], smallest[1]);
   EXPECT_LT(smallest[0], 25.0);
   EXPECT_GT(smallest[1], smallest[0] + 1.0);
+}
+
+// The region around small angles: the faces touching a corner of a face below the limit
+// (radius 0), more within a radius along the edges, none on another sheet close by in space.
+TEST(Remesh, TheRegionAroundSmallAnglesFollowsTheEdges) {
+  const SurfaceMesh grid = make_strip({20.0, 10.0, 20, 10});  // right triangles: 45 degrees
+  std::vector<Vec3> x = grid.positions();
+  VertexId b;
+  for (std::size_t v = 0; v < x.size(); ++v)
+    if ((x[v] - Vec3(11, 0, 0)).norm() < 1e-9) b = VertexId(v);
+  ASSERT_TRUE(b.valid());
+  x[b.index()] = Vec3(10.3, 0.05, 0.0);
+  // A second, undistorted sheet 0.1 mm above the first: near in space, far along the edges.
+  std::vector<Vec3> positions = x;
+  std::vector<FaceIndices> faces = grid.faces();
+  for (const Vec3& p : grid.positions()) positions.push_back(p + Vec3(0, 0, 0.1));
+  const int n = int(grid.num_vertices());
+  for (const FaceIndices& f : grid.faces()) faces.push_back({f[0] + n, f[1] + n, f[2] + n});
+  const SurfaceMesh m(positions, faces);
+
+  EXPECT_TRUE(faces_near_small_angles(grid, 20.0, 5.0).empty());  // 45 degrees everywhere
+  std::vector<bool> small_corner(m.num_vertices(), false);
+  std::size_t small = 0;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const auto v = m.face_vertices(FaceId(f));
+    if (smallest_angle_deg(m.position(v[0]), m.position(v[1]), m.position(v[2])) >= 20.0) continue;
+    ++small;
+    for (const VertexId w : v) small_corner[w.index()] = true;
+  }
+  ASSERT_GT(small, 0u);
+  const std::vector<FaceId> touching = faces_near_small_angles(m, 20.0, 0.0);
+  std::size_t expected = 0;
+  for (std::size_t f = 0; f < m.num_faces(); ++f) {
+    const auto v = m.face_vertices(FaceId(f));
+    expected += small_corner[v[0].index()] || small_corner[v[1].index()] || small_corner[v[2].index()];
+  }
+  EXPECT_EQ(touching.size(), expected);
+  const std::vector<FaceId> wider = faces_near_small_angles(m, 20.0, 1.5);
+  EXPECT_GT(wider.size(), touching.size());
+  EXPECT_TRUE(std::includes(wider.begin(), wider.end(), touching.begin(), touching.end()));
+  for (const FaceId f : wider) {
+    EXPECT_LT(f.index(), grid.num_faces()) << "a face of the other sheet";
+    for (const VertexId v : m.face_vertices(f))  // within 1.5 mm along edges: 2.5 in space
+      if (v.index() < grid.num_vertices()) {
+        EXPECT_LT((m.position(v) - Vec3(10.3, 0.0, 0.0)).norm(), 4.0);
+      }
+  }
+  for (const double bad : {0.0, -5.0, 61.0, std::nan("")})
+    EXPECT_THROW(faces_near_small_angles(m, bad, 1.0), InvalidArgument) << bad;
+  for (const double bad : {-1.0, std::nan(""), HUGE_VAL})
+    EXPECT_THROW(faces_near_small_angles(m, 20.0, bad), InvalidArgument) << bad;
 }
 
 TEST(Remesh, GradedSizingIsFinestAtTheCurveAndGrowsToTheHost) {

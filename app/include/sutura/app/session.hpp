@@ -377,6 +377,10 @@ struct RemeshOp {
   /// The region: faces with a corner within `radius` mm of this polyline (one point: of the
   /// point); empty = the whole object.
   std::vector<engine::Vec3> near;
+  /// Or (> 0, degrees) the faces with a corner within `radius` mm, along the edges, of a face
+  /// whose smallest angle in the current shape is below this (engine::faces_near_small_angles);
+  /// none below: the op leaves the object as it is.
+  double below_angle = 0.0;
   double radius = 0.0;
   double target_edge_length = 0.0;  ///< mm; 0 = the region's mean edge length
   double grading = 1.0;             ///< >= 1: finest at `near`, growing by this per band

@@ -47,6 +47,15 @@ double mean_edge_length(const SurfaceMesh& mesh, const std::vector<FaceId>& face
 std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
                                         double radius);
 
+/// Faces with a corner within `radius` (mm, along edge paths) of a corner of a face whose
+/// smallest angle in `mesh` is below `below_deg` (degrees), sorted; empty when no face is.
+/// Distances follow the edges (Dijkstra from those corners), so a part lying across a fold or
+/// against another wall (a flap turned down onto its bed) is not drawn in unless it is joined
+/// to them within `radius`. Throws InvalidArgument for `below_deg` outside (0, 60] or a radius
+/// that is not finite and >= 0. Cost O(F log F).
+std::vector<FaceId> faces_near_small_angles(const SurfaceMesh& mesh, double below_deg,
+                                            double radius);
+
 struct RemeshParams {
   /// mm, > 0: edge length near `grading_curve` (everywhere without one).
   double target_edge_length = 0.0;
