@@ -135,6 +135,14 @@ json resect_op(const std::string& object, const std::vector<engine::CutPlane>& p
           {"anastomosis", anastomosis}, {"remesh", true}};
 }
 
+json remesh_small_angles_op(const std::string& object, double below_angle, double radius,
+                            double target_edge_length, int iterations) {
+  json op = {{"op", "remesh"}, {"object", object}, {"below_angle", below_angle}, {"radius", radius},
+             {"iterations", iterations}};
+  if (target_edge_length > 0.0) op["target_edge_length"] = target_edge_length;
+  return op;
+}
+
 json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near, double radius,
               double target_edge_length, double grading, int iterations) {
   json op = {{"op", "remesh"}, {"object", object}, {"iterations", iterations}};

@@ -484,9 +484,11 @@ json Run::execute(const RemeshOp& op) {
     p.region = engine::faces_near_small_angles(obj.mesh, op.below_angle, op.radius);
     if (p.region->empty()) {  // nothing to do: the object stays as it is
       const engine::MeshQuality q = engine::mesh_quality(obj.mesh);
+      std::ostringstream m;
+      m << std::fixed << std::setprecision(1) << "no face of '" << op.object << "' has an angle below "
+        << op.below_angle << " degrees (smallest " << q.min_angle_deg << "): unchanged";
       return {{"object", op.object}, {"faces", 0}, {"below_angle_deg", op.below_angle},
-              {"min_angle_deg", q.min_angle_deg}, {"mesh", mesh_counts(obj)},
-              {"summary", "no face of '" + op.object + "' has an angle below the limit; unchanged"}};
+              {"min_angle_deg", q.min_angle_deg}, {"mesh", mesh_counts(obj)}, {"summary", m.str()}};
     }
   }
   p.target_edge_length = op.target_edge_length > 0.0
@@ -497,6 +499,14 @@ json Run::execute(const RemeshOp& op) {
   p.iterations = op.iterations;
   json j = remesh_object(obj, std::move(p));
   j["object"] = op.object;
+  if (op.below_angle > 0.0) {
+    std::ostringstream m;
+    m << std::fixed << std::setprecision(1) << "remeshed " << j["before"]["faces"].get<std::size_t>()
+      << " faces of '" << op.object << "' around angles below " << op.below_angle
+      << " degrees: smallest angle there " << j["before"]["min_angle_deg"].get<double>() << " -> "
+      << j["after"]["min_angle_deg"].get<double>() << " degrees";
+    j["summary"] = m.str();
+  }
   j["mesh"] = mesh_counts(obj);
   return j;
 }

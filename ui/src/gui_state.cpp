@@ -106,7 +106,8 @@ bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {
     error(r.op + " failed: " + r.message);
     return false;
   }
-  info(done_text.empty() ? r.op + " done" : done_text);
+  const bool summarised = r.details.is_object() && r.details.contains("summary") && r.details["summary"].is_string();
+  info(!done_text.empty() ? done_text : summarised ? r.details["summary"].get<std::string>() : r.op + " done");
   if (!stages.has_mesh() && !controller.workspace().objects().empty()) {
     stages.mesh_loaded();
     fit_requested = true;

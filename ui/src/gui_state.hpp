@@ -80,6 +80,10 @@ struct RemeshDraft {
   float target_edge_length = 0.0f;   ///< mm, 0 = the region's mean edge length
   float grading = 1.0f;              ///< >= 1
   int iterations = 3;
+  /// Or the faces within `small_angle_radius` (mm, along the edges) of a face with an angle
+  /// below `below_angle` (degrees): where a solve sheared the mesh.
+  float below_angle = 20.0f;
+  float small_angle_radius = 0.6f;
 };
 
 /// The material of one region of the selected object: its first material (the wall) or a

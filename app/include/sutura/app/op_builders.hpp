@@ -83,6 +83,10 @@ nlohmann::json resect_op(const std::string& object, const std::vector<engine::Cu
 /// `near` only) away from it.
 nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near,
                          double radius, double target_edge_length, double grading, int iterations);
+/// Remesh of the faces within `radius` mm, along the edges, of a face with an angle below
+/// `below_angle` degrees (RemeshOp::below_angle), to `target_edge_length` (0: their mean).
+nlohmann::json remesh_small_angles_op(const std::string& object, double below_angle, double radius,
+                                      double target_edge_length, int iterations);
 /// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);
