@@ -87,10 +87,15 @@ ObjectView object_view(const SceneObject& obj, const engine::SurfaceMesh& state,
       a.loops.push_back(std::move(pts));
     }
   }
+  // Held vertices: in the current state where they are; in the before state at their
+  // pre-operative positions (carried across edits), so both sides of a comparison show them.
+  const auto& fixed = obj.sim.constraints.fixed;
   if (content.marks && &state == &obj.mesh) {
-    const auto& fixed = obj.sim.constraints.fixed;
     for (std::size_t v = 0; v < std::min(fixed.size(), state.num_vertices()); ++v)
       if (fixed[v] != 0) a.held.push_back(point(state.position(engine::VertexId(v))));
+  } else if (content.marks && &state == &obj.before && obj.sim.reference.size() == obj.mesh.num_vertices()) {
+    for (std::size_t v = 0; v < std::min(fixed.size(), obj.sim.reference.size()); ++v)
+      if (fixed[v] != 0) a.held.push_back(point(obj.sim.reference[v]));
   }
   a.color = color;
   return a;

@@ -579,6 +579,44 @@ TEST(Replay, FileNamesThatAreNotUtf8AreReportedNotFatal) {
 // Colour fields are measured with the model whose run produced the shape: after a Model 2
 // (discrete) solve, its strain energy, not Model 1's (which differs: ANDES and DKT against
 // constant-strain triangles and hinges).
+// Both sides of a before/after comparison show the held ends: in the before state at their
+// pre-operative positions (here the inflated tube, solved with as_before), one per held
+// vertex, although an incision has changed the current mesh since.
+TEST(Replay, TheBeforeViewShowsTheHeldVerticesWhereTheyWereBeforeTheSurgery) {
+  fs::path dir = fresh_dir("before_held");
+  std::ofstream(dir / "s.jsonl")
+      << "{\"format\": \"sutura-session\", \"version\": 3}\n"
+         "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+         "\"segments_around\": 16, \"segments_along\": 10}\n"
+         "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
+         "\"thickness\": 0.6}\n"
+         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\"}\n"
+         "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
+         "{\"op\": \"solve\", \"as_before\": true}\n"
+         "{\"op\": \"incise\", \"object\": \"s\", \"points\": [[4.1, 0.2, 6.2], [4.1, 0.3, 13.7]]}\n";
+  const Session session = load_session(dir / "s.jsonl");
+  ReplayOptions o;
+  o.out_dir = dir / "out";
+  SessionRunner runner(session.file, session.description, o);
+  for (const Action& a : session.actions) runner.execute(a);
+  const SceneObject& obj = *runner.workspace().find("s");
+  ASSERT_NE(obj.mesh.num_vertices(), obj.before.num_vertices());  // the incision added vertices
+  const ObjectView after = object_view(obj, obj.mesh, {}, ViewContent{});
+  const ObjectView before = object_view(obj, obj.before, {}, ViewContent{});
+  ASSERT_EQ(after.held.size(), 32u);  // both end rings
+  ASSERT_EQ(before.held.size(), after.held.size());
+  for (const auto& p : before.held) {
+    const sutura::engine::Vec3 x(p[0], p[1], p[2]);
+    double nearest = 1e300;
+    for (std::size_t v = 0; v < obj.before.num_vertices(); ++v)
+      nearest = std::min(nearest, (obj.before.position(sutura::engine::VertexId(v)) - x).norm());
+    EXPECT_LT(nearest, 1e-5) << "a held vertex off the before state's vertices";
+  }
+  ViewContent bare;
+  bare.marks = false;
+  EXPECT_TRUE(object_view(obj, obj.before, {}, bare).held.empty());
+}
+
 TEST(Replay, FieldsOfAModel2RunComeFromModel2) {
   fs::path dir = fresh_dir("fields_model");
   std::ofstream(dir / "s.jsonl")

@@ -22,7 +22,7 @@ inline constexpr render::Color kHeldColor = {0.95f, 0.75f, 0.05f};
 
 /// What is drawn of an object besides its surface.
 struct ViewContent {
-  bool marks = true;       ///< patches tinted, incisions, sutures, and held vertices (current state)
+  bool marks = true;       ///< patches tinted, incisions, sutures (current state), held vertices
   bool boundaries = true;  ///< open boundary loops as dark lines
   Field field = Field::None;
 };
@@ -34,12 +34,12 @@ struct ObjectView {
   PlanDrawing plan;              ///< faces (wall and patches), incisions and sutures
   std::vector<float> scalars;    ///< per vertex; empty without a field
   std::vector<std::vector<render::Point3>> loops;
-  std::vector<render::Point3> held;  ///< current state with marks only
+  std::vector<render::Point3> held;  ///< with marks: in the before state at their pre-operative positions
   render::Color color{};
 };
 
 /// `obj` in `state`, its current mesh or its pre-operative `obj.before` (the plan belongs to
-/// the current mesh: the before state has no marks). O(V + F), plus the field's cost: Model
+/// the current mesh: the before state's only marks are the held vertices). O(V + F), plus the field's cost: Model
 /// 1's measures for the current state's element fields (one pass over the elements).
 ObjectView object_view(const SceneObject& obj, const engine::SurfaceMesh& state, render::Color color,
                        const ViewContent& content);
