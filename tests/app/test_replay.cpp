@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -582,24 +583,32 @@ TEST(Replay, FileNamesThatAreNotUtf8AreReportedNotFatal) {
 // Both sides of a before/after comparison show the held ends: in the before state at their
 // pre-operative positions (here the inflated tube, solved with as_before), one per held
 // vertex, although an incision has changed the current mesh since.
-TEST(Replay, TheBeforeViewShowsTheHeldVerticesWhereTheyWereBeforeTheSurgery) {
-  fs::path dir = fresh_dir("before_held");
+// The tube "s" (R 4 mm, 16 x 10 segments, E 1 MPa, nu 0.45, t 0.6 mm) and then `steps`,
+// run op by op in `dir` by a SessionRunner, which is returned with its workspace.
+std::unique_ptr<SessionRunner> run_on_tube(const fs::path& dir, const std::string& steps) {
   std::ofstream(dir / "s.jsonl")
       << "{\"format\": \"sutura-session\", \"version\": 3}\n"
          "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
          "\"segments_around\": 16, \"segments_along\": 10}\n"
          "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
-         "\"thickness\": 0.6}\n"
-         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\"}\n"
-         "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
-         "{\"op\": \"solve\", \"as_before\": true}\n"
-         "{\"op\": \"incise\", \"object\": \"s\", \"points\": [[4.1, 0.2, 6.2], [4.1, 0.3, 13.7]]}\n";
+         "\"thickness\": 0.6}\n" << steps;
   const Session session = load_session(dir / "s.jsonl");
   ReplayOptions o;
   o.out_dir = dir / "out";
-  SessionRunner runner(session.file, session.description, o);
-  for (const Action& a : session.actions) runner.execute(a);
-  const SceneObject& obj = *runner.workspace().find("s");
+  auto runner = std::make_unique<SessionRunner>(session.file, session.description, o);
+  for (const Action& a : session.actions) runner->execute(a);
+  return runner;
+}
+
+TEST(Replay, TheBeforeViewShowsTheHeldVerticesWhereTheyWereBeforeTheSurgery) {
+  const fs::path dir = fresh_dir("before_held");
+  const auto runner = run_on_tube(
+      dir,
+      "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\"}\n"
+      "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
+      "{\"op\": \"solve\", \"as_before\": true}\n"
+      "{\"op\": \"incise\", \"object\": \"s\", \"points\": [[4.1, 0.2, 6.2], [4.1, 0.3, 13.7]]}\n");
+  const SceneObject& obj = *runner->workspace().find("s");
   ASSERT_NE(obj.mesh.num_vertices(), obj.before.num_vertices());  // the incision added vertices
   const ObjectView after = object_view(obj, obj.mesh, {}, ViewContent{});
   const ObjectView before = object_view(obj, obj.before, {}, ViewContent{});
@@ -615,25 +624,17 @@ TEST(Replay, TheBeforeViewShowsTheHeldVerticesWhereTheyWereBeforeTheSurgery) {
   ViewContent bare;
   bare.marks = false;
   EXPECT_TRUE(object_view(obj, obj.before, {}, bare).held.empty());
+  fs::remove_all(dir);
 }
 
 TEST(Replay, FieldsOfAModel2RunComeFromModel2) {
-  fs::path dir = fresh_dir("fields_model");
-  std::ofstream(dir / "s.jsonl")
-      << "{\"format\": \"sutura-session\", \"version\": 3}\n"
-         "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
-         "\"segments_around\": 16, \"segments_along\": 10}\n"
-         "{\"op\": \"material\", \"object\": \"s\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
-         "\"thickness\": 0.6}\n"
-         "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\", \"dofs\": [\"translations\"]}\n"
-         "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
-         "{\"op\": \"solve\", \"model\": \"discrete\", \"load_steps\": 2}\n";
-  const Session session = load_session(dir / "s.jsonl");
-  ReplayOptions o;
-  o.out_dir = dir / "out";
-  SessionRunner runner(session.file, session.description, o);
-  for (const Action& a : session.actions) runner.execute(a);
-  const SceneObject& obj = *runner.workspace().find("s");
+  const fs::path dir = fresh_dir("fields_model");
+  const auto runner = run_on_tube(
+      dir,
+      "{\"op\": \"fix\", \"object\": \"s\", \"boundary\": \"all\", \"dofs\": [\"translations\"]}\n"
+      "{\"op\": \"pressure\", \"object\": \"s\", \"pressure\": 0.0107}\n"
+      "{\"op\": \"solve\", \"model\": \"discrete\", \"load_steps\": 2}\n");
+  const SceneObject& obj = *runner->workspace().find("s");
   EXPECT_EQ(obj.sim.state_model, sutura::engine::make_discrete_shell()->name());
   const std::vector<float> shown = field_values(Field::EnergyDensity, obj, obj.mesh);
   const auto energy = [&](const sutura::engine::ShellModel& model) {
