@@ -471,35 +471,37 @@ json Run::execute(const ResectOp& op) {
 }
 
 json Run::execute(const RemeshOp& op) {
-  remember();
-  SceneObject& obj = edit(op.object);
   engine::RemeshParams p;
+  const engine::SurfaceMesh& mesh = object(op.object).mesh;
   if (!op.near.empty()) {
-    p.region = engine::faces_near_polyline(obj.mesh, op.near, op.radius);
+    p.region = engine::faces_near_polyline(mesh, op.near, op.radius);
     if (p.region->empty())
       throw std::runtime_error("near: no face of '" + op.object + "' has a corner within " +
                                std::to_string(op.radius) + " mm of the points");
   }
   if (op.below_angle > 0.0) {
-    p.region = engine::faces_near_small_angles(obj.mesh, op.below_angle, op.radius);
-    if (p.region->empty()) {  // nothing to do: the object stays as it is
-      const engine::MeshQuality q = engine::mesh_quality(obj.mesh);
+    p.region = engine::faces_near_small_angles(mesh, op.below_angle, op.radius);
+    if (p.region->empty()) {  // nothing to do: the object and the history stay as they are
+      const engine::MeshQuality q = engine::mesh_quality(mesh);
       std::ostringstream m;
       m << std::fixed << std::setprecision(1) << "no face of '" << op.object << "' has an angle below "
         << op.below_angle << " degrees (smallest " << q.min_angle_deg << "): unchanged";
-      return {{"object", op.object}, {"faces", 0}, {"below_angle_deg", op.below_angle},
-              {"min_angle_deg", q.min_angle_deg}, {"mesh", mesh_counts(obj)}, {"summary", m.str()}};
+      return {{"object", op.object}, {"below_angle_deg", op.below_angle}, {"faces", 0},
+              {"min_angle_deg", q.min_angle_deg}, {"mesh", mesh_counts(object(op.object))}, {"summary", m.str()}};
     }
   }
   p.target_edge_length = op.target_edge_length > 0.0
                              ? op.target_edge_length
-                             : engine::mean_edge_length(obj.mesh, p.region.value_or(std::vector<engine::FaceId>{}));
+                             : engine::mean_edge_length(mesh, p.region.value_or(std::vector<engine::FaceId>{}));
+  remember();
+  SceneObject& obj = edit(op.object);
   p.grading = op.grading;
   if (op.grading > 1.0) p.grading_curve = op.near;
   p.iterations = op.iterations;
   json j = remesh_object(obj, std::move(p));
   j["object"] = op.object;
   if (op.below_angle > 0.0) {
+    j["below_angle_deg"] = op.below_angle;
     std::ostringstream m;
     m << std::fixed << std::setprecision(1) << "remeshed " << j["before"]["faces"].get<std::size_t>()
       << " faces of '" << op.object << "' around angles below " << op.below_angle

@@ -1,5 +1,6 @@
 // Surgery ops through the session layer: clear errors for bad requests (naming line and op),
 // undo/redo, both shell models on the same joining session, determinism.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -280,8 +281,9 @@ TEST(SurgeryOps, RemeshOpKeepsAPressurisedEquilibrium) {
 
 // "below_angle": a flat plate (1 mm squares, 45-degree triangles) with one vertex pushed
 // towards its neighbour, its rim held: only the faces around the small angles are remeshed,
-// the smallest angle rises past the limit, and the unstressed plate stays flat. A plate with
-// no small angle is left exactly as it was.
+// the smallest angle rises past the limit, and the unstressed plate stays unstressed (its
+// elements' rest shapes are their current ones). A plate with no small angle is left exactly
+// as it was, and the op is no step of the plan: an undo after it undoes the fix before it.
 TEST(SurgeryOps, RemeshOpBelowAnAngleRemeshesAroundTheSmallAnglesOnly) {
   const auto plate = [](const fs::path& dir, bool sliver) {
     std::ofstream obj(dir / "plate.obj");
@@ -312,8 +314,16 @@ TEST(SurgeryOps, RemeshOpBelowAnAngleRemeshesAroundTheSmallAnglesOnly) {
   const nlohmann::json skipped = remesh_action(kept);
   ASSERT_FALSE(skipped.is_null());
   EXPECT_EQ(skipped["faces"].get<int>(), 0);
+  EXPECT_EQ(skipped["below_angle_deg"].get<double>(), 20.0);
   EXPECT_NEAR(skipped["min_angle_deg"].get<double>(), 45.0, 1e-9);
-  EXPECT_EQ(kept.workspace.find("p")->mesh.num_faces(), 200u);
+  const SceneObject& flat = *kept.workspace.find("p");
+  const ReplayResult loaded = sutura::testing::replay_text(session.substr(0, session.rfind("{\"op\": \"remesh\"")), even);
+  EXPECT_EQ(position_hash(flat.mesh), position_hash(loaded.workspace.find("p")->mesh));
+  EXPECT_EQ(flat.mesh.faces(), loaded.workspace.find("p")->mesh.faces());
+  const ReplayResult undone = sutura::testing::replay_text(session + "{\"op\": \"undo\"}\n", even);
+  const auto& fixed = undone.workspace.find("p")->sim.constraints.fixed;
+  EXPECT_EQ(std::count_if(fixed.begin(), fixed.end(), [](auto f) { return f != 0; }), 0)
+      << "the undo undid the no-op remesh, not the fix";
 
   const fs::path dir = scratch("below_angle");
   plate(dir, true);
@@ -326,8 +336,11 @@ TEST(SurgeryOps, RemeshOpBelowAnAngleRemeshesAroundTheSmallAnglesOnly) {
   EXPECT_LT(remeshed["before"]["min_angle_deg"].get<double>(), 20.0);
   EXPECT_GT(remeshed["after"]["min_angle_deg"].get<double>(), 20.0);
   const SceneObject& p = *r.workspace.find("p");
-  EXPECT_GT(sutura::engine::mesh_quality(p.mesh).min_angle_deg, 20.0);
-  for (const auto& x : p.mesh.positions()) EXPECT_EQ(x.z(), 0.0);
+  const double current = sutura::engine::mesh_quality(p.mesh).min_angle_deg;
+  EXPECT_GT(current, 20.0);
+  EXPECT_NEAR(sutura::engine::rest_quality(p.sim.rest).min_angle_deg, current, 1e-9);
+  EXPECT_EQ(remeshed["below_angle_deg"].get<double>(), 20.0);
+  EXPECT_NE(remeshed["summary"].get<std::string>().find("around angles below 20.0 degrees"), std::string::npos);
 }
 
 TEST(SurgeryOps, RemeshOpRefusesBadRegionsAndLengths) {

@@ -323,16 +323,15 @@ void remesh_controls(GuiState& s) {
   if (ImGui::Button("Cancel##remesh")) cancel_draft(s);
   ImGui::Separator();
   ImGui::TextWrapped("Or remesh, in the shape shown, only where a face has an angle below the limit, with the "
-                     "faces within the distance along the surface (after a solve has sheared the mesh: then "
-                     "simulate again).");
+                     "faces within the distance along the surface, to the edge length above (after a solve has "
+                     "sheared the mesh: then simulate again).");
   number_field("angle below [deg]", &s.remesh.below_angle, 5.0f, 60.0f, 1.0f, "%.0f");
   number_field("around [mm]", &s.remesh.small_angle_radius, 0.1f, 10.0f, 0.1f, "%.1f");
-  if (gated_button(s.widgets, "Remesh small angles", s.why_not(Command::Remesh, "remesh")) && s.selected()) {
-    if (s.perform(app::remesh_small_angles_op(s.selected()->name, app::as_typed(s.remesh.below_angle),
-                                              app::as_typed(s.remesh.small_angle_radius),
-                                              app::as_typed(s.remesh.target_edge_length), s.remesh.iterations)))  // its summary says what changed
-      s.remesh.points.clear();
-  }
+  // The op's summary is the message: how many faces, or that none was below.
+  if (gated_button(s.widgets, "Remesh small angles", s.why_not(Command::Remesh, "remesh")) && s.selected())
+    s.perform(app::remesh_small_angles_op(s.selected()->name, app::as_typed(s.remesh.below_angle),
+                                          app::as_typed(s.remesh.small_angle_radius),
+                                          app::as_typed(s.remesh.target_edge_length), s.remesh.iterations));
 }
 
 void load_controls(GuiState& s) {
