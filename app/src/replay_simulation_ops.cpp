@@ -60,12 +60,18 @@ void commit_pending_loads(SceneObject& o) {
 // minimisation can stall short of the equilibrium after many steps (measured: the subclavian
 // flap's inflation with its LSA end free gave up after 53 s, the residual 3e4 times too large).
 // Throws naming the object and a vertex of the rim.
-void require_conservative_pressure(MergedSystem& merged) {
+// The vertices where a pressure ends at a rim free to move (the loads have no potential).
+std::set<std::size_t> free_pressure_rims(MergedSystem& merged) {
   const engine::ShellSystem& sys = merged.system();
   std::set<std::size_t> rim;
   for (const engine::Loads* loads : {&sys.loads, &sys.fixed_loads})
     for (const std::size_t v : engine::free_pressure_rim(sys.problem, *loads, sys.constraints))
       rim.insert(v);
+  return rim;
+}
+
+void require_conservative_pressure(MergedSystem& merged) {
+  const std::set<std::size_t> rim = free_pressure_rims(merged);
   if (rim.empty()) return;
   const std::size_t node = *rim.begin();
   std::size_t offset = 0;
@@ -316,7 +322,10 @@ json Run::execute(const SolveOp& op) {
     if (r.converged && op.load_factor >= 1.0) commit_pending_loads(*o);
     else o->sim.pending_factor = r.lambda_reached;
   }
-  if (!r.converged) throw std::runtime_error(r.message);
+  if (!r.converged) {
+    const std::string advice = solve_advice(r.message, op.minimize, free_pressure_rims(merged).empty());
+    throw std::runtime_error(advice.empty() ? r.message : r.message + ". " + advice);
+  }
   if (op.as_before)
     for (SceneObject* o : objs) make_before(*o, o->mesh.positions());
   json out = {{"model", model->name()}, {"converged", r.converged}, {"iterations", r.iterations},

@@ -37,6 +37,20 @@ std::string relaxation_advice(const std::string& message, bool collapse_barrier,
   return {};
 }
 
+std::string solve_advice(const std::string& message, bool minimize, bool conservative) {
+  const auto says = [&](const char* what) { return message.find(what) != std::string::npos; };
+  if (minimize || !(says("exploded") || says("collapsed a triangle") || says("non-finite") ||
+                    says("no convergence in")))
+    return {};
+  if (conservative)
+    return "Advice: solve as an energy minimisation (\"minimize\": true), whose steps only go "
+           "downhill: it converges where Newton's full steps run off, as from a shape remeshed "
+           "under load or a buckled wall.";
+  return "Advice: a pressure ends at a rim that is free to move, so an energy minimisation cannot "
+         "be offered; hold that rim (the fix op; in the window: Plan > Fix ends), then solve as "
+         "an energy minimisation (\"minimize\": true).";
+}
+
 std::unique_ptr<engine::ShellModel> make_model(const std::string& name) {
   if (name == "corotational") return engine::make_corotational_shell();
   if (name == "discrete") return engine::make_discrete_shell();

@@ -82,4 +82,47 @@ TEST(RelaxationAdvice, AFailedRelaxationInAReplaySaysWhatToChange) {
   std::filesystem::remove_all(dir);
 }
 
+// A static solve that ran off as Newton's iteration is advised the energy minimisation when
+// its loads have a potential, and to hold the free rims first when they have none; nothing
+// for a minimisation, nor for a message that names no such cause.
+TEST(SolveAdvice, NewtonThatRunsOffIsAdvisedTheEnergyMinimisation) {
+  const std::string exploded =
+      "static solve failed at load factor 0.015625: the strain energy exploded (1.2e14 N*mm); "
+      "rolled back to the last converged load factor 0";
+  const std::string advice = solve_advice(exploded, false, true);
+  EXPECT_EQ(advice.rfind("Advice: ", 0), 0u) << advice;
+  EXPECT_NE(advice.find("\"minimize\": true"), std::string::npos) << advice;
+  EXPECT_NE(solve_advice("static solve failed at load factor 1: no convergence in 30 Newton iterations",
+                         false, true).find("\"minimize\": true"), std::string::npos);
+  const std::string free_rim = solve_advice(exploded, false, false);
+  EXPECT_NE(free_rim.find("hold that rim"), std::string::npos) << free_rim;
+  EXPECT_TRUE(solve_advice(exploded, true, true).empty());
+  EXPECT_TRUE(solve_advice("the tangent stiffness is singular", false, true).empty());
+}
+
+// A held, inflated tube solved with one Newton iteration cannot converge: the replay's error is
+// the engine's message and the advice after it.
+TEST(SolveAdvice, AFailedSolveInAReplaySaysWhatToChange) {
+  const auto dir = sutura::testing::scratch_dir("advice", "solve");
+  const std::string session =
+      "{\"format\": \"sutura-session\", \"version\": 3}\n"
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+      "\"segments_around\": 16, \"segments_along\": 10}\n"
+      "{\"op\": \"material\", \"object\": \"t\", \"youngs_modulus\": 1.0, \"poisson_ratio\": 0.45, "
+      "\"thickness\": 0.6}\n"
+      "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": \"all\"}\n"
+      "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.0107}\n"
+      "{\"op\": \"solve\", \"max_iterations\": 1}\n";
+  try {
+    sutura::testing::replay_text(session, dir);
+    FAIL() << "one Newton iteration cannot inflate the tube to the tolerance";
+  } catch (const SessionError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.line(), 6);
+    EXPECT_NE(m.find("no convergence in"), std::string::npos) << m;
+    EXPECT_NE(m.find(". Advice: solve as an energy minimisation (\"minimize\": true)"), std::string::npos) << m;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace

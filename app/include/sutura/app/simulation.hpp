@@ -37,6 +37,14 @@ std::unique_ptr<engine::ShellModel> state_model_of(const SceneObject& obj);
 std::string relaxation_advice(const std::string& message, bool collapse_barrier,
                               engine::RelaxationSolver solver, double until);
 
+/// What to change after a static solve failed with `message` (engine::StaticResult::message)
+/// as Newton's iteration (`minimize` false), in the words of relaxation_advice, or empty. A
+/// state that exploded, collapsed or did not converge: solve as an energy minimisation, whose
+/// steps only go downhill, when the loads have a potential (`conservative`: no pressure ends
+/// at a free rim); otherwise hold the free rims first. Nothing for a minimisation that failed,
+/// nor for other messages.
+std::string solve_advice(const std::string& message, bool minimize, bool conservative);
+
 class MergedSystem {
  public:
   /// Merges `objects` (non-empty, distinct). Pending loads are scaled by lambda, applied
