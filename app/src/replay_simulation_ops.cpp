@@ -55,11 +55,6 @@ void commit_pending_loads(SceneObject& o) {
   o.sim.pending_factor = 0.0;
 }
 
-// An energy minimisation ("minimize") looks for a minimum of strain energy minus the work of
-// the loads; a pressure that reaches a rim free to move has no such potential there, and the
-// minimisation can stall short of the equilibrium after many steps (measured: the subclavian
-// flap's inflation with its LSA end free gave up after 53 s, the residual 3e4 times too large).
-// Throws naming the object and a vertex of the rim.
 // The vertices where a pressure ends at a rim free to move (the loads have no potential).
 std::set<std::size_t> free_pressure_rims(MergedSystem& merged) {
   const engine::ShellSystem& sys = merged.system();
@@ -70,6 +65,11 @@ std::set<std::size_t> free_pressure_rims(MergedSystem& merged) {
   return rim;
 }
 
+// An energy minimisation ("minimize") looks for a minimum of strain energy minus the work of
+// the loads; a pressure that reaches a rim free to move has no such potential there, and the
+// minimisation can stall short of the equilibrium after many steps (measured: the subclavian
+// flap's inflation with its LSA end free gave up after 53 s, the residual 3e4 times too large).
+// Throws naming the object and a vertex of the rim.
 void require_conservative_pressure(MergedSystem& merged) {
   const std::set<std::size_t> rim = free_pressure_rims(merged);
   if (rim.empty()) return;

@@ -39,8 +39,9 @@ struct ObjectView {
 };
 
 /// `obj` in `state`, its current mesh or its pre-operative `obj.before` (the plan belongs to
-/// the current mesh: the before state's only marks are the held vertices). O(V + F), plus the field's cost: Model
-/// 1's measures for the current state's element fields (one pass over the elements).
+/// the current mesh: the before state's only marks are the held vertices). O(V + F), plus
+/// the field's cost: Model 1's measures for the current state's element fields (one pass over
+/// the elements).
 ObjectView object_view(const SceneObject& obj, const engine::SurfaceMesh& state, render::Color color,
                        const ViewContent& content);
 
