@@ -126,6 +126,11 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
   }
   double energy_scale =
       std::max({force * characteristic_length(state), params.energy_reference, 1e-30});
+  // The start state's own strain energy counts as converged too: a solve without loads from a
+  // stressed shape (a sutured vessel settling after a remesh) starts with it, and without it
+  // the first iterate's energy would read as an explosion. One evaluation, O(F).
+  const double start_energy = evaluate(sys, map, state, params.lambda_start, false).internal_energy;
+  if (std::isfinite(start_energy)) energy_scale = std::max(energy_scale, start_energy);
   // A load-stepped energy minimisation starts its quasi-Newton steps from the tangent at the
   // start, where `state` is in equilibrium at lambda_start (positive definite if that is
   // stable: for an unloaded start the small-displacement stiffness, and the load stiffness of
