@@ -71,4 +71,21 @@ ElementCheck check_elements(const Workspace& workspace) {
   return check;
 }
 
+std::vector<SmallestAngle> smallest_angles(const Workspace& workspace) {
+  std::vector<SmallestAngle> out;
+  for (const SceneObject& o : workspace.objects()) {
+    if (o.mesh.num_faces() == 0) continue;
+    const engine::MeshQuality q = engine::mesh_quality(o.mesh);
+    SmallestAngle a{o.name, q.min_angle_deg, engine::Vec3::Zero(), 0.0};
+    const auto v = o.mesh.face_vertices(q.worst_face);
+    a.where = (o.mesh.position(v[0]) + o.mesh.position(v[1]) + o.mesh.position(v[2])) / 3.0;
+    if (std::size_t(q.worst_face.index()) < o.sim.rest.elements.size()) {
+      const auto& X = o.sim.rest.elements[std::size_t(q.worst_face.index())].X;
+      a.rest_degrees = engine::smallest_angle_deg(X[0], X[1], X[2]);
+    }
+    out.push_back(a);
+  }
+  return out;
+}
+
 }  // namespace sutura::app

@@ -143,6 +143,24 @@ json remesh_small_angles_op(const std::string& object, double below_angle, doubl
   return op;
 }
 
+std::vector<json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle, double radius,
+                                 bool collapse_barrier) {
+  std::vector<json> ops;
+  json objects = json::array();
+  for (const SmallestAngle& a : angles) {
+    if (!(a.degrees < below_angle)) continue;
+    ops.push_back(remesh_small_angles_op(a.object, below_angle, radius, 0.0, 3));
+    objects.push_back(a.object);
+  }
+  if (ops.empty()) return ops;
+  // A minimisation, as the bundled flap session settles after its remesh: its steps only go
+  // downhill, where full Newton steps from a remeshed, slightly unbalanced shape can run off.
+  json solve = {{"op", "solve"}, {"objects", objects}, {"minimize", true}, {"check_stability", true}};
+  if (collapse_barrier) solve["collapse_barrier"] = true;
+  ops.push_back(solve);
+  return ops;
+}
+
 json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near, double radius,
               double target_edge_length, double grading, int iterations) {
   json op = {{"op", "remesh"}, {"object", object}, {"iterations", iterations}};

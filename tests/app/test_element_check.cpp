@@ -80,3 +80,31 @@ TEST(ElementCheck, MarkersAreBoundedAndKeepTheSmallest) {
   EXPECT_EQ(c.refused[0].where[0], centroid(o, faces - 1));
   EXPECT_NEAR(c.refused[0].smallest_deg, 1.0, 1e-9);
 }
+
+// The shape shown (current positions), not the rest shape: a vertex moved towards its
+// neighbour makes the smallest angle, and the rest angle of that face is reported beside it.
+TEST(ElementCheck, SmallestAnglesAreOfTheCurrentShapeAndSayWhere) {
+  app::Workspace w;
+  w.add("strip", engine::make_strip({}));
+  w.add("other", engine::make_strip({}));
+  const double generated = engine::mesh_quality(w.objects()[0].mesh).min_angle_deg;
+  app::SceneObject& o = *w.edit("strip");
+  const auto v = o.mesh.face_vertices(engine::FaceId(9));
+  // Squeeze face 9: its third corner onto its first edge's midpoint, less a little.
+  const engine::Vec3 mid = 0.5 * (o.mesh.position(v[0]) + o.mesh.position(v[1]));
+  o.mesh.set_position(v[2], mid + 0.05 * (o.mesh.position(v[2]) - mid));
+  o.sim.state.x[std::size_t(v[2].index())] = o.mesh.position(v[2]);
+
+  const std::vector<app::SmallestAngle> a = app::smallest_angles(w);
+  ASSERT_EQ(a.size(), 2u);
+  EXPECT_EQ(a[0].object, "strip");
+  EXPECT_LT(a[0].degrees, 10.0);
+  EXPECT_DOUBLE_EQ(a[0].degrees, engine::mesh_quality(o.mesh).min_angle_deg);
+  const engine::FaceId worst = engine::mesh_quality(o.mesh).worst_face;
+  EXPECT_EQ(a[0].where, centroid(o, worst.index()));
+  const auto& X = o.sim.rest.elements[std::size_t(worst.index())].X;
+  EXPECT_DOUBLE_EQ(a[0].rest_degrees, engine::smallest_angle_deg(X[0], X[1], X[2]));
+  EXPECT_GE(a[0].rest_degrees, generated - 1e-9);  // the rest shape is as generated
+  EXPECT_EQ(a[1].object, "other");
+  EXPECT_DOUBLE_EQ(a[1].degrees, generated);
+}

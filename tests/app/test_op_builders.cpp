@@ -155,3 +155,19 @@ TEST(OpBuilders, TheCuttingTemplateIsOfTheLastPatchWithItsStartProximal) {
   plan.applied = 4;
   EXPECT_EQ(patch_template_op(plan, "c", 1, "t.pdf")["proximal"], nlohmann::json({3, 2, 1}));
 }
+
+// After a run, what keeps its triangles well shaped: a remesh of each object with a smaller
+// angle than the limit, then one settle of those objects; nothing when none is below.
+TEST(OpBuilders, KeepingAnglesRemeshesTheObjectsBelowTheLimitAndSettlesThem) {
+  const std::vector<SmallestAngle> angles = {{"a", 12.0, {}, 30.0}, {"b", 25.0, {}, 30.0}, {"c", 19.9, {}, 30.0}};
+  const std::vector<nlohmann::json> ops = keep_angle_ops(angles, 20.0, 0.6, true);
+  ASSERT_EQ(ops.size(), 3u);
+  EXPECT_EQ(ops[0], remesh_small_angles_op("a", 20.0, 0.6, 0.0, 3));
+  EXPECT_EQ(ops[1], remesh_small_angles_op("c", 20.0, 0.6, 0.0, 3));
+  EXPECT_EQ(ops[2], (nlohmann::json{{"op", "solve"}, {"objects", {"a", "c"}}, {"minimize", true},
+                                    {"check_stability", true}, {"collapse_barrier", true}}));
+  for (const auto& op : ops) EXPECT_NO_THROW(parse_action(op, "keep.jsonl", 1)) << op.dump();
+  EXPECT_FALSE(keep_angle_ops(angles, 20.0, 0.6, false)[2].contains("collapse_barrier"));
+  EXPECT_TRUE(keep_angle_ops(angles, 12.0, 0.6, true).empty());  // none below 12
+  EXPECT_TRUE(keep_angle_ops({}, 20.0, 0.6, true).empty());
+}

@@ -4,6 +4,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +15,8 @@
 #include "input_events.hpp"
 #include "panels.hpp"
 #include "script_player.hpp"
+#include "sutura/app/element_check.hpp"
+#include "sutura/app/op_builders.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/session.hpp"
 #include "sutura/render/glfw_library.hpp"
@@ -67,6 +70,7 @@ void finish_worker(GuiState& s) {
   // A cancel that came after the run ended, before this poll, still stops the plan.
   if (outcome->ok && !s.queued_runs.empty() && s.controller.cancel_requested()) {
     s.queued_runs.clear();
+    s.keeping_angle = false;
     s.stages.simulation_finished();
     s.info(outcome->op + " finished; the next run was cancelled before it started");
     return;
@@ -79,15 +83,48 @@ void finish_worker(GuiState& s) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.2f", outcome->details.value("seconds", 0.0));
     if (s.start_run(next, s.run + 1, s.runs, why)) {
-      s.info(outcome->op + " phase finished in " + seconds + " s; the next phase is running");
+      std::string text = outcome->op + " phase finished in " + seconds + " s";
+      const nlohmann::json& d = outcome->details;
+      if (d.contains("summary") && d["summary"].is_string()) text += ": " + d["summary"].get<std::string>();
+      s.info(text + "; the next phase is running");
       return;
     }
     s.queued_runs.clear();
+    s.keeping_angle = false;
     s.stages.simulation_cancelled();
     s.error(outcome->op + ": the next phase could not start: " + why);
     return;
   }
   s.queued_runs.clear();
+  if (outcome->ok && outcome->op == "simulate" && s.simulation.keep_angle &&
+      !s.controller.cancel_requested()) {
+    const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
+    const std::vector<nlohmann::json> ops =
+        app::keep_angle_ops(angles, app::as_typed(s.remesh.below_angle), app::as_typed(s.remesh.small_angle_radius),
+                            s.simulation.collapse_barrier);
+    std::string why;
+    if (!ops.empty() && s.start_run(ops.front(), s.run + 1, s.run + int(ops.size()), why)) {
+      s.queued_runs.assign(ops.begin() + 1, ops.end());
+      s.keeping_angle = true;
+      std::string text = "simulate finished; smallest angle";
+      char buf[64];
+      for (const auto& a : angles) {
+        if (!(a.degrees < app::as_typed(s.remesh.below_angle))) continue;
+        std::snprintf(buf, sizeof buf, " %.1f degrees", a.degrees);
+        text += " of '";
+        text += a.object;
+        text += "':";
+        text += buf;
+      }
+      std::snprintf(buf, sizeof buf, "%.0f", double(s.remesh.below_angle));
+      text += ", below ";
+      text += buf;
+      text += ": remeshing there and settling again (Simulate: keep triangles well shaped)";
+      s.info(text);
+      return;
+    }
+    if (!ops.empty()) s.error("simulate: the remesh after the run could not start: " + why);
+  }
   if (outcome->ok) {
     s.stages.simulation_finished();
     const nlohmann::json& d = outcome->details;
@@ -98,11 +135,40 @@ void finish_worker(GuiState& s) {
     if (d.contains("summary") && d["summary"].is_string()) text += ": " + d["summary"].get<std::string>();  // design_patch
     if (s.last_equilibrium.is_object() && s.last_equilibrium.value("stable", false))
       text += "; the relaxed shape is a stable equilibrium";
+    std::optional<std::string> still_below;
+    if (outcome->op == "simulate" || outcome->op == "solve") {
+      // The quality of the shape shown, which the keep-angle remesh looks after.
+      const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
+      const auto worst = std::min_element(angles.begin(), angles.end(),
+                                          [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
+      if (worst != angles.end()) {
+        char degrees[32];
+        std::snprintf(degrees, sizeof degrees, "%.1f", worst->degrees);
+        text += "; smallest angle ";
+        text += degrees;
+        text += " degrees ('";
+        text += worst->object;
+        text += "')";
+        if (s.keeping_angle && worst->degrees < app::as_typed(s.remesh.below_angle)) {
+          char buf[320];
+          std::snprintf(buf, sizeof buf,
+                        "after the remesh and the settle, '%s' has an angle of %.1f degrees (%.1f in its rest "
+                        "shape) near (%.1f, %.1f, %.1f) mm: the repair itself deforms the tissue there this far, "
+                        "and a new mesh does not change that. Look at the membrane strain there.",
+                        worst->object.c_str(), worst->degrees, worst->rest_degrees, worst->where.x(),
+                        worst->where.y(), worst->where.z());
+          still_below = buf;
+        }
+      }
+    }
+    s.keeping_angle = false;
     s.info(text);
+    if (still_below) s.error("warning: " + *still_below);
     // An unstable end state stays on screen until dismissed, like an error.
     if (d.contains("warning")) s.error("warning: " + d["warning"].get<std::string>());
     return;
   }
+  s.keeping_angle = false;
   s.stages.simulation_cancelled();
   if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
   else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);
@@ -319,6 +385,7 @@ int run_gui(const GuiOptions& options) {
     if (state->open_requested && state->open_confirmed) {
       if (controller->busy()) {
         state->queued_runs.clear();
+        state->keeping_angle = false;
         controller->cancel();
         while (controller->busy() && !controller->poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
         state->info("The running simulation was cancelled to open another session");

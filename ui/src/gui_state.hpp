@@ -111,6 +111,10 @@ struct SimulationSettings {
   /// The relaxation method: static (false), or the flap's static-then-damped-dynamics
   /// (flap_relaxation_ops; the relax steps above do not apply).
   bool staged_dynamics = false;
+  /// After a run whose result has a triangle with an angle below the Remesh tool's limit
+  /// (RemeshDraft::below_angle, within its small_angle_radius): remesh there and settle again
+  /// (app::keep_angle_ops), as two more runs.
+  bool keep_angle = true;
 };
 
 struct Message {
@@ -149,6 +153,8 @@ struct GuiState {
   /// Simulate ops still to start, in order, once the running one has succeeded (the flap
   /// method's second phase); emptied when a run fails or is cancelled.
   std::deque<nlohmann::json> queued_runs;
+  /// The queued runs are the keep-angle remesh and settle (SimulationSettings::keep_angle).
+  bool keeping_angle = false;
   /// The running op: when it started, and its number among the runs the last Run simulation
   /// started (progress_text).
   std::chrono::steady_clock::time_point run_started;

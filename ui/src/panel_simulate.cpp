@@ -69,6 +69,11 @@ void simulate_section(GuiState& s) {
       "Adds the collapse barrier: triangles resist being squashed below a quarter of their rest "
       "area. Needed where a suture gathers tissue more finely than the mesh can wrinkle "
       "(e.g. a subclavian flap).");
+  noted_checkbox(s.widgets, "Keep triangles well shaped", &s.simulation.keep_angle);
+  tooltip_for_last_item(
+      "After the run, where a triangle of the result has an angle below the Remesh tool's limit "
+      "(20 degrees unless changed there): remesh the faces around it (within the tool's distance) "
+      "and settle again, as an energy minimisation. Two more steps of the plan, recorded as such.");
   ImGui::EndDisabled();
 
   if (!running) {

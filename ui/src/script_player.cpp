@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "gui_state.hpp"
+#include "sutura/app/element_check.hpp"
 #include "sutura/app/plan.hpp"
 
 namespace sutura::ui {
@@ -195,6 +196,12 @@ void ScriptPlayer::step(ScriptHost& host, double frame_seconds) {
           const std::optional<StandardView> v = host.state.camera.standard_view();
           const std::string seen = v ? to_string(*v) : "no standard view";
           if (seen != x["view"].get<std::string>()) return fail("the camera looks from " + seen);
+        }
+        if (x.contains("min_angle_deg")) {
+          if (host.state.controller.busy()) return fail("angles are read when no op runs: wait_idle first");
+          for (const auto& a : app::smallest_angles(host.state.controller.workspace()))
+            if (a.degrees < x["min_angle_deg"].get<double>())
+              return fail("'" + a.object + "' has an angle of " + std::to_string(a.degrees) + " degrees");
         }
         if (x.contains("stage") &&
             x["stage"].get<std::string>() != std::string(to_string(host.state.stages.stage())))

@@ -20,6 +20,8 @@
 //   {"expect": {"message_not_contains": "text"}}   fail if a shown message contains the text
 //   {"expect": {"plan_applied": N, "plan_contains": "text"}}   fail unless N plan steps are in
 //       effect and some step's words (app::describe_action) contain the text
+//   {"expect": {"min_angle_deg": D}}   fail if a triangle of the shape shown has a smaller
+//       angle (app::smallest_angles; wait_idle first)
 //   {"expect": {"view": "Superior"}}   fail unless the camera looks from that standard view
 //       (to_string(StandardView); "no standard view" after orbiting)
 //   {"time_frames": N}                 print the mean frame time of the next N frames

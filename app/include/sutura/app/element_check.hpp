@@ -33,4 +33,16 @@ struct ElementCheck {
 /// Checks every object's rest triangles. O(total faces).
 ElementCheck check_elements(const Workspace& workspace);
 
+/// The smallest interior angle of one object's triangles in the shape shown (its current
+/// positions, not the rest shape), degrees, and where it is.
+struct SmallestAngle {
+  std::string object;
+  double degrees = 0.0;
+  engine::Vec3 where = engine::Vec3::Zero();  ///< the face's centroid, mm
+  double rest_degrees = 0.0;                  ///< the smallest angle of that face's rest shape
+};
+
+/// SmallestAngle of every object with faces, in workspace order. O(total faces).
+std::vector<SmallestAngle> smallest_angles(const Workspace& workspace);
+
 }  // namespace sutura::app

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sutura/app/element_check.hpp"
 #include "sutura/app/plan.hpp"
 #include "sutura/engine/mesh.hpp"
 #include "sutura/engine/surgery/resect.hpp"
@@ -87,6 +88,13 @@ nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Ve
 /// `below_angle` degrees (RemeshOp::below_angle), to `target_edge_length` (0: their mean).
 nlohmann::json remesh_small_angles_op(const std::string& object, double below_angle, double radius,
                                       double target_edge_length, int iterations);
+/// What keeps the triangles of a run's result at `below_angle` degrees or more (the window's
+/// "Keep triangles above" after a simulation): for each object of `angles` whose smallest angle
+/// is below it, remesh_small_angles_op(object, below_angle, radius, 0, 3); then one static
+/// solve of those objects back to equilibrium, as an energy minimisation ("minimize", with
+/// "check_stability", and "collapse_barrier" when `collapse_barrier`). Empty when none is below.
+std::vector<nlohmann::json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle,
+                                           double radius, bool collapse_barrier);
 /// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);
