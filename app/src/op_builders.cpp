@@ -144,7 +144,7 @@ json remesh_small_angles_op(const std::string& object, double below_angle, doubl
 }
 
 std::vector<json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle, double radius,
-                                 bool collapse_barrier) {
+                                 bool minimize, bool collapse_barrier) {
   std::vector<json> ops;
   json objects = json::array();
   for (const SmallestAngle& a : angles) {
@@ -153,12 +153,18 @@ std::vector<json> keep_angle_ops(const std::vector<SmallestAngle>& angles, doubl
     objects.push_back(a.object);
   }
   if (ops.empty()) return ops;
-  // A minimisation, as the bundled flap session settles after its remesh: its steps only go
-  // downhill, where full Newton steps from a remeshed, slightly unbalanced shape can run off.
-  json solve = {{"op", "solve"}, {"objects", objects}, {"minimize", true}, {"check_stability", true}};
+  json solve = {{"op", "solve"}, {"objects", objects}, {"check_stability", true}};
+  if (minimize) solve["minimize"] = true;
   if (collapse_barrier) solve["collapse_barrier"] = true;
   ops.push_back(solve);
   return ops;
+}
+
+json static_solve_op(bool minimize, bool collapse_barrier) {
+  json op = {{"op", "solve"}, {"load_steps", 4}, {"check_stability", true}};
+  if (minimize) op["minimize"] = true;
+  if (collapse_barrier) op["collapse_barrier"] = true;
+  return op;
 }
 
 json remesh_op(const std::string& object, const std::vector<engine::Vec3>& near, double radius,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "sutura/engine/sim/loads.hpp"
+
 namespace sutura::app {
 
 std::string relaxation_advice(const std::string& message, bool collapse_barrier,
@@ -210,6 +212,28 @@ std::vector<std::pair<std::string, std::span<const engine::Vec3>>> MergedSystem:
                      std::span<const engine::Vec3>(x).subspan(node_offset_[i],
                                                               objects_[i]->mesh.num_vertices()));
   return out;
+}
+
+bool loads_have_potential(const Workspace& workspace, const std::vector<std::string>& objects) {
+  std::vector<SceneObject> copies;
+  if (objects.empty()) {
+    for (const SceneObject& o : workspace.objects()) copies.push_back(o);
+  } else {
+    for (const std::string& name : objects) {
+      const SceneObject* o = workspace.find(name);
+      if (o == nullptr) throw std::invalid_argument("no object named '" + name + "'");
+      copies.push_back(*o);
+    }
+  }
+  if (copies.empty()) return true;
+  std::vector<SceneObject*> pointers;
+  for (SceneObject& o : copies) pointers.push_back(&o);
+  const std::unique_ptr<engine::ShellModel> model = make_model("corotational");  // rims need no model
+  const MergedSystem merged(pointers, *model);
+  const engine::ShellSystem& sys = merged.system();
+  for (const engine::Loads* loads : {&sys.loads, &sys.fixed_loads})
+    if (!engine::free_pressure_rim(sys.problem, *loads, sys.constraints).empty()) return false;
+  return true;
 }
 
 }  // namespace sutura::app

@@ -160,14 +160,24 @@ TEST(OpBuilders, TheCuttingTemplateIsOfTheLastPatchWithItsStartProximal) {
 // angle than the limit, then one settle of those objects; nothing when none is below.
 TEST(OpBuilders, KeepingAnglesRemeshesTheObjectsBelowTheLimitAndSettlesThem) {
   const std::vector<SmallestAngle> angles = {{"a", 12.0, {}, 30.0}, {"b", 25.0, {}, 30.0}, {"c", 19.9, {}, 30.0}};
-  const std::vector<nlohmann::json> ops = keep_angle_ops(angles, 20.0, 0.6, true);
+  const std::vector<nlohmann::json> ops = keep_angle_ops(angles, 20.0, 0.6, true, true);
   ASSERT_EQ(ops.size(), 3u);
   EXPECT_EQ(ops[0], remesh_small_angles_op("a", 20.0, 0.6, 0.0, 3));
   EXPECT_EQ(ops[1], remesh_small_angles_op("c", 20.0, 0.6, 0.0, 3));
   EXPECT_EQ(ops[2], (nlohmann::json{{"op", "solve"}, {"objects", {"a", "c"}}, {"minimize", true},
                                     {"check_stability", true}, {"collapse_barrier", true}}));
   for (const auto& op : ops) EXPECT_NO_THROW(parse_action(op, "keep.jsonl", 1)) << op.dump();
-  EXPECT_FALSE(keep_angle_ops(angles, 20.0, 0.6, false)[2].contains("collapse_barrier"));
-  EXPECT_TRUE(keep_angle_ops(angles, 12.0, 0.6, true).empty());  // none below 12
-  EXPECT_TRUE(keep_angle_ops({}, 20.0, 0.6, true).empty());
+  const nlohmann::json newton = keep_angle_ops(angles, 20.0, 0.6, false, false)[2];
+  EXPECT_FALSE(newton.contains("collapse_barrier"));
+  EXPECT_FALSE(newton.contains("minimize"));
+  EXPECT_TRUE(keep_angle_ops(angles, 12.0, 0.6, true, true).empty());  // none below 12
+  EXPECT_TRUE(keep_angle_ops({}, 20.0, 0.6, true, true).empty());
+}
+
+TEST(OpBuilders, TheStaticRunSolvesEveryLoadInFourSteps) {
+  EXPECT_EQ(static_solve_op(true, true), (nlohmann::json{{"op", "solve"}, {"load_steps", 4}, {"check_stability", true},
+                                                          {"minimize", true}, {"collapse_barrier", true}}));
+  EXPECT_EQ(static_solve_op(false, false),
+            (nlohmann::json{{"op", "solve"}, {"load_steps", 4}, {"check_stability", true}}));
+  EXPECT_NO_THROW(parse_action(static_solve_op(true, true), "static.jsonl", 1));
 }

@@ -125,4 +125,27 @@ TEST(SolveAdvice, AFailedSolveInAReplaySaysWhatToChange) {
   std::filesystem::remove_all(dir);
 }
 
+// A pressure has a potential energy unless it ends at a rim free to move: a tube's open ends
+// until they are held, and a second object without loads changes nothing.
+TEST(LoadsHavePotential, APressureEndingAtAFreeRimHasNone) {
+  const auto dir = sutura::testing::scratch_dir("advice", "potential");
+  const std::string start =
+      "{\"format\": \"sutura-session\", \"version\": 3}\n"
+      "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 20, "
+      "\"segments_around\": 16, \"segments_along\": 10}\n"
+      "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\"}\n";
+  const std::string pressure = "{\"op\": \"pressure\", \"object\": \"t\", \"pressure\": 0.0107}\n";
+  const std::string hold = "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": \"all\"}\n";
+  const Workspace unloaded = sutura::testing::replay_text(start, dir).workspace;
+  EXPECT_TRUE(loads_have_potential(unloaded));
+  const Workspace free_ends = sutura::testing::replay_text(start + pressure, dir).workspace;
+  EXPECT_FALSE(loads_have_potential(free_ends));
+  EXPECT_FALSE(loads_have_potential(free_ends, {"t"}));
+  EXPECT_TRUE(loads_have_potential(free_ends, {"s"}));
+  const Workspace held = sutura::testing::replay_text(start + hold + pressure, dir).workspace;
+  EXPECT_TRUE(loads_have_potential(held));
+  EXPECT_THROW((void)loads_have_potential(held, {"nothing"}), std::invalid_argument);
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <ctime>
 #include <iostream>
+#include <utility>
 
 #include "gui_state.hpp"
 #include "input_events.hpp"
@@ -19,6 +20,7 @@
 #include "sutura/app/op_builders.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/session.hpp"
+#include "sutura/app/simulation.hpp"
 #include "sutura/render/glfw_library.hpp"
 #include "sutura/render/renderer.hpp"
 #include "viewport.hpp"
@@ -70,7 +72,7 @@ void finish_worker(GuiState& s) {
   // A cancel that came after the run ended, before this poll, still stops the plan.
   if (outcome->ok && !s.queued_runs.empty() && s.controller.cancel_requested()) {
     s.queued_runs.clear();
-    s.keeping_angle = false;
+    s.keep_angle_after_run = s.keeping_angle = false;
     s.stages.simulation_finished();
     s.info(outcome->op + " finished; the next run was cancelled before it started");
     return;
@@ -90,23 +92,28 @@ void finish_worker(GuiState& s) {
       return;
     }
     s.queued_runs.clear();
-    s.keeping_angle = false;
+    s.keep_angle_after_run = s.keeping_angle = false;
     s.stages.simulation_cancelled();
     s.error(outcome->op + ": the next phase could not start: " + why);
     return;
   }
   s.queued_runs.clear();
-  if (outcome->ok && outcome->op == "simulate" && s.simulation.keep_angle &&
-      !s.controller.cancel_requested()) {
+  if (outcome->ok && std::exchange(s.keep_angle_after_run, false) && !s.controller.cancel_requested()) {
     const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
+    std::vector<std::string> below;
+    for (const auto& a : angles)
+      if (a.degrees < app::as_typed(s.remesh.below_angle)) below.push_back(a.object);
     const std::vector<nlohmann::json> ops =
-        app::keep_angle_ops(angles, app::as_typed(s.remesh.below_angle), app::as_typed(s.remesh.small_angle_radius),
-                            s.simulation.collapse_barrier);
+        below.empty() ? std::vector<nlohmann::json>{}
+                      : app::keep_angle_ops(angles, app::as_typed(s.remesh.below_angle),
+                                            app::as_typed(s.remesh.small_angle_radius),
+                                            app::loads_have_potential(s.controller.workspace(), below),
+                                            s.simulation.collapse_barrier);
     std::string why;
     if (!ops.empty() && s.start_run(ops.front(), s.run + 1, s.run + int(ops.size()), why)) {
       s.queued_runs.assign(ops.begin() + 1, ops.end());
       s.keeping_angle = true;
-      std::string text = "simulate finished; smallest angle";
+      std::string text = outcome->op + " finished; smallest angle";
       char buf[64];
       for (const auto& a : angles) {
         if (!(a.degrees < app::as_typed(s.remesh.below_angle))) continue;
@@ -123,7 +130,7 @@ void finish_worker(GuiState& s) {
       s.info(text);
       return;
     }
-    if (!ops.empty()) s.error("simulate: the remesh after the run could not start: " + why);
+    if (!ops.empty()) s.error(outcome->op + ": the remesh after the run could not start: " + why);
   }
   if (outcome->ok) {
     s.stages.simulation_finished();
@@ -168,7 +175,7 @@ void finish_worker(GuiState& s) {
     if (d.contains("warning")) s.error("warning: " + d["warning"].get<std::string>());
     return;
   }
-  s.keeping_angle = false;
+  s.keep_angle_after_run = s.keeping_angle = false;
   s.stages.simulation_cancelled();
   if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
   else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);
@@ -385,7 +392,7 @@ int run_gui(const GuiOptions& options) {
     if (state->open_requested && state->open_confirmed) {
       if (controller->busy()) {
         state->queued_runs.clear();
-        state->keeping_angle = false;
+        state->keep_angle_after_run = state->keeping_angle = false;
         controller->cancel();
         while (controller->busy() && !controller->poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
         state->info("The running simulation was cancelled to open another session");

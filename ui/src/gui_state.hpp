@@ -115,6 +115,9 @@ struct SimulationSettings {
   /// (RemeshDraft::below_angle, within its small_angle_radius): remesh there and settle again
   /// (app::keep_angle_ops), as two more runs.
   bool keep_angle = true;
+  /// A run with nothing to relax: a static solve of every load (app::static_solve_op), or
+  /// (false) the implicit dynamics of `steps` steps of `dt`.
+  bool static_settle = false;
 };
 
 struct Message {
@@ -153,7 +156,9 @@ struct GuiState {
   /// Simulate ops still to start, in order, once the running one has succeeded (the flap
   /// method's second phase); emptied when a run fails or is cancelled.
   std::deque<nlohmann::json> queued_runs;
-  /// The queued runs are the keep-angle remesh and settle (SimulationSettings::keep_angle).
+  /// The runs Run simulation started end with the keep-angle check (SimulationSettings::
+  /// keep_angle), and the queued runs are its remesh and settle (keeping_angle).
+  bool keep_angle_after_run = false;
   bool keeping_angle = false;
   /// The running op: when it started, and its number among the runs the last Run simulation
   /// started (progress_text).

@@ -2,6 +2,7 @@
 #include "panels.hpp"
 #include "progress_text.hpp"
 #include "sutura/app/session.hpp"
+#include "sutura/app/simulation.hpp"
 
 namespace sutura::ui {
 
@@ -24,6 +25,16 @@ std::optional<std::string> nothing_to_relax(const GuiState& s) {
   for (const auto& o : s.controller.workspace().objects())
     if (o.sim.relax_from) return std::nullopt;
   return "No suture since the last relaxation: the run only settles.";
+}
+
+// The runs Run simulation starts, in order: the flap method's two, one relaxation, or with
+// nothing to relax (relax 0) a static solve or implicit dynamics.
+std::vector<nlohmann::json> run_ops(const GuiState& s, int relax) {
+  const SimulationSettings& o = s.simulation;
+  if (relax > 0 && o.staged_dynamics) return app::flap_relaxation_ops(o.collapse_barrier);
+  if (relax == 0 && o.static_settle)
+    return {app::static_solve_op(app::loads_have_potential(s.controller.workspace()), o.collapse_barrier)};
+  return {app::simulate_op(o.steps, o.dt, relax, o.collapse_barrier)};
 }
 
 }  // namespace
@@ -60,9 +71,17 @@ void simulate_section(GuiState& s) {
                                    "shape). Fewer, larger increments usually need fewer Newton "
                                    "iterations in all; more give more frames of the animation.");
   ImGui::BeginDisabled(!no_relax.has_value());
+  if (noted_radio(s.widgets, "Static equilibrium", s.simulation.static_settle)) s.simulation.static_settle = true;
+  tooltip_for_last_item("With nothing to relax: the shape in equilibrium under every load (e.g. 80 mmHg once the "
+                        "clamps are off), in 4 load steps; as an energy minimisation when the loads have one.");
+  ImGui::SameLine();
+  if (noted_radio(s.widgets, "Implicit dynamics", !s.simulation.static_settle)) s.simulation.static_settle = false;
+  tooltip_for_last_item("With nothing to relax: the settle steps below, each dt long.");
+  ImGui::BeginDisabled(s.simulation.static_settle);
   number_field("settle steps", &s.simulation.steps, 1, 400);
   tooltip_for_last_item("Implicit dynamics steps of a run with nothing to relax.");
   ImGui::InputFloat("dt [s]", &s.simulation.dt, 0.0f, 0.0f, "%.4f");
+  ImGui::EndDisabled();
   ImGui::EndDisabled();
   noted_checkbox(s.widgets, "Resist collapse (gathered tissue)", &s.simulation.collapse_barrier);
   tooltip_for_last_item(
@@ -93,13 +112,9 @@ void simulate_section(GuiState& s) {
     std::string why;
     if (const auto refusal = s.element_check.refusal()) {
       s.error("Run refused. " + *refusal);
-    } else if (std::vector<nlohmann::json> ops =
-                   relax > 0 && s.simulation.staged_dynamics
-                       ? app::flap_relaxation_ops(s.simulation.collapse_barrier)
-                       : std::vector<nlohmann::json>{app::simulate_op(s.simulation.steps, s.simulation.dt,
-                                                                 relax, s.simulation.collapse_barrier)};
-               s.start_run(ops.front(), 1, int(ops.size()), why)) {
+    } else if (std::vector<nlohmann::json> ops = run_ops(s, relax); s.start_run(ops.front(), 1, int(ops.size()), why)) {
       s.queued_runs.assign(ops.begin() + 1, ops.end());
+      s.keep_angle_after_run = s.simulation.keep_angle;
       s.stages.simulation_started();
       s.tool = Tool::Navigate;
       cancel_draft(s);

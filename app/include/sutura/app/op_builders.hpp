@@ -89,12 +89,18 @@ nlohmann::json remesh_op(const std::string& object, const std::vector<engine::Ve
 nlohmann::json remesh_small_angles_op(const std::string& object, double below_angle, double radius,
                                       double target_edge_length, int iterations);
 /// What keeps the triangles of a run's result at `below_angle` degrees or more (the window's
-/// "Keep triangles above" after a simulation): for each object of `angles` whose smallest angle
-/// is below it, remesh_small_angles_op(object, below_angle, radius, 0, 3); then one static
-/// solve of those objects back to equilibrium, as an energy minimisation ("minimize", with
-/// "check_stability", and "collapse_barrier" when `collapse_barrier`). Empty when none is below.
+/// "Keep triangles well shaped" after a simulation): for each object of `angles` whose smallest
+/// angle is below it, remesh_small_angles_op(object, below_angle, radius, 0, 3); then one
+/// static solve of those objects back to equilibrium ("check_stability"; "collapse_barrier"
+/// when `collapse_barrier`), as an energy minimisation when `minimize` (loads_have_potential:
+/// its steps only go downhill, where full Newton steps from a remeshed, slightly unbalanced
+/// shape can run off), else by Newton. Empty when none is below.
 std::vector<nlohmann::json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle,
-                                           double radius, bool collapse_barrier);
+                                           double radius, bool minimize, bool collapse_barrier);
+/// The static equilibrium under every load (the window's Simulate with nothing to relax, *Static
+/// equilibrium*): {"op": "solve", "load_steps": 4, "check_stability": true}, with "minimize"
+/// when `minimize` (loads_have_potential) and "collapse_barrier" when `collapse_barrier`.
+nlohmann::json static_solve_op(bool minimize, bool collapse_barrier);
 /// Implicit dynamics; `relax_steps` > 0 adds {"relax": {"steps": N}} (rest-shape relaxation),
 /// otherwise the scheme is recorded ("linearized").
 nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_barrier = false);

@@ -45,6 +45,13 @@ std::string relaxation_advice(const std::string& message, bool collapse_barrier,
 /// nor for other messages.
 std::string solve_advice(const std::string& message, bool minimize, bool conservative);
 
+/// Whether the loads on the named objects of `workspace` (all of them when `objects` is
+/// empty), solved together at full value, have a potential energy: no pressure ends at a rim
+/// free to move (engine::free_pressure_rim). Then a static solve of them can be an energy
+/// minimisation ("minimize"). Throws std::invalid_argument for an unknown object.
+/// Cost O(F log F), on copies of the objects.
+bool loads_have_potential(const Workspace& workspace, const std::vector<std::string>& objects = {});
+
 class MergedSystem {
  public:
   /// Merges `objects` (non-empty, distinct). Pending loads are scaled by lambda, applied
