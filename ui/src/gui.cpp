@@ -202,6 +202,7 @@ void refresh_view(GuiState& s, float aspect) {
   }
   if (!s.controller.busy() && s.element_check_revision != s.controller.revision()) {
     s.element_check = app::check_elements(s.controller.workspace());
+    s.smallest_angles = app::smallest_angles(s.controller.workspace());
     s.element_check_revision = s.controller.revision();
   }
   if (s.fit_requested && !s.view.current().empty()) {

@@ -233,6 +233,9 @@ struct GuiState {
   /// Thin rest triangles of the workspace at revision element_check_revision (refreshed with
   /// the picker): a run is refused or warned about, and the view marks them.
   app::ElementCheck element_check;
+  /// The smallest angle of each object's shape shown, at the same revision (the Remesh tool
+  /// shows the selected object's).
+  std::vector<app::SmallestAngle> smallest_angles;
   std::uint64_t element_check_revision = ~std::uint64_t(0);
   /// selected_centreline(): made at revision centreline_revision for object centreline_object.
   std::optional<engine::CentrelineTree> centreline;

@@ -323,8 +323,14 @@ void remesh_controls(GuiState& s) {
   if (ImGui::Button("Cancel##remesh")) cancel_draft(s);
   ImGui::Separator();
   ImGui::TextWrapped("Or remesh, in the shape shown, only where a face has an angle below the limit, with the "
-                     "faces within the distance along the surface, to the edge length above (after a solve has "
-                     "sheared the mesh: then simulate again).");
+                     "faces within the distance along the surface, to the edge length above. A run does this by "
+                     "itself and settles again, unless Simulate > Keep triangles well shaped is off.");
+  if (const app::SceneObject* o = s.selected())
+    for (const app::SmallestAngle& a : s.smallest_angles)
+      if (a.object == o->name)
+        ImGui::TextWrapped("Smallest angle of '%s' now: %.1f degrees (that face at rest: %.1f), near (%.1f, %.1f, "
+                           "%.1f) mm.",
+                           a.object.c_str(), a.degrees, a.rest_degrees, a.where.x(), a.where.y(), a.where.z());
   number_field("angle below [deg]", &s.remesh.below_angle, 5.0f, 60.0f, 1.0f, "%.0f");
   number_field("around [mm]", &s.remesh.small_angle_radius, 0.1f, 10.0f, 0.1f, "%.1f");
   // The op's summary is the message: how many faces, or that none was below.
