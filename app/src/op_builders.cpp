@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "sutura/app/simulation.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
 
 namespace sutura::app {
@@ -158,6 +159,20 @@ std::vector<json> keep_angle_ops(const std::vector<SmallestAngle>& angles, doubl
   if (collapse_barrier) solve["collapse_barrier"] = true;
   ops.push_back(solve);
   return ops;
+}
+
+std::vector<json> keep_angle_plan(const Workspace& workspace, double below_angle, double radius,
+                                  bool collapse_barrier) {
+  std::vector<SmallestAngle> held;
+  std::vector<std::string> below;
+  for (const SmallestAngle& a : smallest_angles(workspace)) {
+    const SceneObject* o = workspace.find(a.object);
+    if (o == nullptr || !restrained(*o)) continue;
+    held.push_back(a);
+    if (a.degrees < below_angle) below.push_back(a.object);
+  }
+  if (below.empty()) return {};
+  return keep_angle_ops(held, below_angle, radius, loads_have_potential(workspace, below), collapse_barrier);
 }
 
 json static_solve_op(bool minimize, bool collapse_barrier) {

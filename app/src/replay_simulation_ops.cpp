@@ -55,16 +55,6 @@ void commit_pending_loads(SceneObject& o) {
   o.sim.pending_factor = 0.0;
 }
 
-// The vertices where a pressure ends at a rim free to move (the loads have no potential).
-std::set<std::size_t> free_pressure_rims(MergedSystem& merged) {
-  const engine::ShellSystem& sys = merged.system();
-  std::set<std::size_t> rim;
-  for (const engine::Loads* loads : {&sys.loads, &sys.fixed_loads})
-    for (const std::size_t v : engine::free_pressure_rim(sys.problem, *loads, sys.constraints))
-      rim.insert(v);
-  return rim;
-}
-
 // An energy minimisation ("minimize") looks for a minimum of strain energy minus the work of
 // the loads; a pressure that reaches a rim free to move has no such potential there, and the
 // minimisation can stall short of the equilibrium after many steps (measured: the subclavian

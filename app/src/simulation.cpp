@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "sutura/engine/sim/loads.hpp"
+#include "sutura/engine/sim/rigid_modes.hpp"
 
 namespace sutura::app {
 
@@ -229,11 +230,19 @@ bool loads_have_potential(const Workspace& workspace, const std::vector<std::str
   std::vector<SceneObject*> pointers;
   for (SceneObject& o : copies) pointers.push_back(&o);
   const std::unique_ptr<engine::ShellModel> model = make_model("corotational");  // rims need no model
-  const MergedSystem merged(pointers, *model);
+  return free_pressure_rims(MergedSystem(pointers, *model)).empty();
+}
+
+std::set<std::size_t> free_pressure_rims(const MergedSystem& merged) {
   const engine::ShellSystem& sys = merged.system();
+  std::set<std::size_t> rim;
   for (const engine::Loads* loads : {&sys.loads, &sys.fixed_loads})
-    if (!engine::free_pressure_rim(sys.problem, *loads, sys.constraints).empty()) return false;
-  return true;
+    for (const std::size_t v : engine::free_pressure_rim(sys.problem, *loads, sys.constraints)) rim.insert(v);
+  return rim;
+}
+
+bool restrained(const SceneObject& object) {
+  return engine::free_rigid_motions(object.sim.state.x, object.sim.constraints).empty();
 }
 
 }  // namespace sutura::app

@@ -181,3 +181,32 @@ TEST(OpBuilders, TheStaticRunSolvesEveryLoadInFourSteps) {
             (nlohmann::json{{"op", "solve"}, {"load_steps", 4}, {"check_stability", true}}));
   EXPECT_NO_THROW(parse_action(static_solve_op(true, true), "static.jsonl", 1));
 }
+
+// On a workspace: the object held and squeezed is remeshed and settled (as a minimisation: it
+// has no loads); the same squeeze on an object that nothing holds is left alone (a settle of it
+// has no unique equilibrium); an object without a small angle plans nothing.
+TEST(OpBuilders, KeepingAnglesOnAWorkspaceLeavesObjectsThatAreNotHeld) {
+  Workspace w;
+  for (const char* name : {"held", "free", "fine"}) w.add(name, sutura::engine::make_strip({}));
+  for (const char* name : {"held", "free"}) {
+    SceneObject& o = *w.edit(name);
+    const auto v = o.mesh.face_vertices(sutura::engine::FaceId(9));
+    const sutura::engine::Vec3 mid = 0.5 * (o.mesh.position(v[0]) + o.mesh.position(v[1]));
+    o.mesh.set_position(v[2], mid + 0.05 * (o.mesh.position(v[2]) - mid));
+    o.sim.state.x[std::size_t(v[2].index())] = o.mesh.position(v[2]);
+  }
+  for (const char* name : {"held", "fine"}) {
+    SceneObject& o = *w.edit(name);
+    std::vector<sutura::engine::VertexId> all;
+    for (std::size_t v = 0; v < o.mesh.num_vertices(); ++v) all.emplace_back(int(v));
+    o.sim.constraints.fix(all, sutura::engine::kAllDofs, o.mesh.num_vertices());
+  }
+  const std::vector<nlohmann::json> ops = keep_angle_plan(w, 20.0, 0.6, false);
+  ASSERT_EQ(ops.size(), 2u);
+  EXPECT_EQ(ops[0], remesh_small_angles_op("held", 20.0, 0.6, 0.0, 3));
+  EXPECT_EQ(ops[1], (nlohmann::json{{"op", "solve"}, {"objects", {"held"}}, {"check_stability", true},
+                                    {"minimize", true}}));
+  const double squeezed = smallest_angles(w)[0].degrees;
+  EXPECT_LT(squeezed, 20.0);
+  EXPECT_TRUE(keep_angle_plan(w, squeezed, 0.6, false).empty());  // none strictly below
+}

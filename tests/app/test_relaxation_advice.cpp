@@ -145,6 +145,17 @@ TEST(LoadsHavePotential, APressureEndingAtAFreeRimHasNone) {
   const Workspace held = sutura::testing::replay_text(start + hold + pressure, dir).workspace;
   EXPECT_TRUE(loads_have_potential(held));
   EXPECT_THROW((void)loads_have_potential(held, {"nothing"}), std::invalid_argument);
+  // Once solved, the pressure is applied (a fixed load, no longer pending) and still judged:
+  // with both ends held it has a potential, with one end free it has none.
+  const std::string solve = "{\"op\": \"solve\", \"objects\": [\"t\"], \"load_steps\": 2}\n";
+  const std::string hold_one = "{\"op\": \"fix\", \"object\": \"t\", \"boundary\": [0]}\n";
+  for (const bool both : {true, false}) {
+    const Workspace solved =
+        sutura::testing::replay_text(start + (both ? hold : hold_one) + pressure + solve, dir).workspace;
+    ASSERT_TRUE(solved.find("t")->sim.pending_loads.pressures.empty());
+    ASSERT_FALSE(solved.find("t")->sim.applied_loads.pressures.empty());
+    EXPECT_EQ(loads_have_potential(solved), both);
+  }
   std::filesystem::remove_all(dir);
 }
 

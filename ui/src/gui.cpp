@@ -14,13 +14,12 @@
 
 #include "gui_state.hpp"
 #include "input_events.hpp"
+#include "keep_angle.hpp"
 #include "panels.hpp"
 #include "script_player.hpp"
 #include "sutura/app/element_check.hpp"
-#include "sutura/app/op_builders.hpp"
 #include "sutura/app/output_paths.hpp"
 #include "sutura/app/session.hpp"
-#include "sutura/app/simulation.hpp"
 #include "sutura/render/glfw_library.hpp"
 #include "sutura/render/renderer.hpp"
 #include "viewport.hpp"
@@ -65,14 +64,16 @@ int framebuffer_x(float x, int width, int fb_width) {
   return std::clamp(int(x * float(fb_width) / float(width)), 0, fb_width - 1);
 }
 
-// Worker results change the stage: finished -> Inspect, failed or cancelled -> Plan.
+// Worker results change the stage: finished -> Inspect, failed or cancelled -> Plan. (A
+// failed or cancelled keep-angle run is taken back and ends in Inspect: keep_angle.hpp.)
 void finish_worker(GuiState& s) {
   const auto outcome = s.controller.poll();
   if (!outcome) return;
   // A cancel that came after the run ended, before this poll, still stops the plan.
   if (outcome->ok && !s.queued_runs.empty() && s.controller.cancel_requested()) {
+    s.keep_angle_after_run = false;
+    if (s.keeping_angle) return take_back_keep_angle(s, "the remesh of small angles was cancelled");
     s.queued_runs.clear();
-    s.keep_angle_after_run = s.keeping_angle = false;
     s.stages.simulation_finished();
     s.info(outcome->op + " finished; the next run was cancelled before it started");
     return;
@@ -91,47 +92,17 @@ void finish_worker(GuiState& s) {
       s.info(text + "; the next phase is running");
       return;
     }
+    s.keep_angle_after_run = false;
+    if (s.keeping_angle) return take_back_keep_angle(s, "the settle after the remesh could not start: " + why);
     s.queued_runs.clear();
-    s.keep_angle_after_run = s.keeping_angle = false;
     s.stages.simulation_cancelled();
     s.error(outcome->op + ": the next phase could not start: " + why);
     return;
   }
   s.queued_runs.clear();
-  if (outcome->ok && std::exchange(s.keep_angle_after_run, false) && !s.controller.cancel_requested()) {
-    const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
-    std::vector<std::string> below;
-    for (const auto& a : angles)
-      if (a.degrees < app::as_typed(s.remesh.below_angle)) below.push_back(a.object);
-    const std::vector<nlohmann::json> ops =
-        below.empty() ? std::vector<nlohmann::json>{}
-                      : app::keep_angle_ops(angles, app::as_typed(s.remesh.below_angle),
-                                            app::as_typed(s.remesh.small_angle_radius),
-                                            app::loads_have_potential(s.controller.workspace(), below),
-                                            s.simulation.collapse_barrier);
-    std::string why;
-    if (!ops.empty() && s.start_run(ops.front(), s.run + 1, s.run + int(ops.size()), why)) {
-      s.queued_runs.assign(ops.begin() + 1, ops.end());
-      s.keeping_angle = true;
-      std::string text = outcome->op + " finished; smallest angle";
-      char buf[64];
-      for (const auto& a : angles) {
-        if (!(a.degrees < app::as_typed(s.remesh.below_angle))) continue;
-        std::snprintf(buf, sizeof buf, " %.1f degrees", a.degrees);
-        text += " of '";
-        text += a.object;
-        text += "':";
-        text += buf;
-      }
-      std::snprintf(buf, sizeof buf, "%.0f", double(s.remesh.below_angle));
-      text += ", below ";
-      text += buf;
-      text += ": remeshing there and settling again (Simulate: keep triangles well shaped)";
-      s.info(text);
-      return;
-    }
-    if (!ops.empty()) s.error(outcome->op + ": the remesh after the run could not start: " + why);
-  }
+  if (outcome->ok && std::exchange(s.keep_angle_after_run, false) && !s.controller.cancel_requested() &&
+      start_keep_angle(s, *outcome))
+    return;
   if (outcome->ok) {
     s.stages.simulation_finished();
     const nlohmann::json& d = outcome->details;
@@ -142,9 +113,8 @@ void finish_worker(GuiState& s) {
     if (d.contains("summary") && d["summary"].is_string()) text += ": " + d["summary"].get<std::string>();  // design_patch
     if (s.last_equilibrium.is_object() && s.last_equilibrium.value("stable", false))
       text += "; the relaxed shape is a stable equilibrium";
-    std::optional<std::string> still_below;
     if (outcome->op == "simulate" || outcome->op == "solve") {
-      // The quality of the shape shown, which the keep-angle remesh looks after.
+      // The quality of the shape shown, which the keep-angle step looks after.
       const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
       const auto worst = std::min_element(angles.begin(), angles.end(),
                                           [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
@@ -156,18 +126,9 @@ void finish_worker(GuiState& s) {
         text += " degrees ('";
         text += worst->object;
         text += "')";
-        if (s.keeping_angle && worst->degrees < app::as_typed(s.remesh.below_angle)) {
-          char buf[320];
-          std::snprintf(buf, sizeof buf,
-                        "after the remesh and the settle, '%s' has an angle of %.1f degrees (%.1f in its rest "
-                        "shape) near (%.1f, %.1f, %.1f) mm: the repair itself deforms the tissue there this far, "
-                        "and a new mesh does not change that. Look at the membrane strain there.",
-                        worst->object.c_str(), worst->degrees, worst->rest_degrees, worst->where.x(),
-                        worst->where.y(), worst->where.z());
-          still_below = buf;
-        }
       }
     }
+    const std::optional<std::string> still_below = s.keeping_angle ? still_below_warning(s) : std::nullopt;
     s.keeping_angle = false;
     s.info(text);
     if (still_below) s.error("warning: " + *still_below);
@@ -175,7 +136,11 @@ void finish_worker(GuiState& s) {
     if (d.contains("warning")) s.error("warning: " + d["warning"].get<std::string>());
     return;
   }
-  s.keep_angle_after_run = s.keeping_angle = false;
+  s.keep_angle_after_run = false;
+  if (s.keeping_angle)
+    return take_back_keep_angle(
+        s, outcome->cancelled ? outcome->op + " after the remesh was cancelled"
+                              : outcome->op + " after the remesh failed (" + outcome->message + ")");
   s.stages.simulation_cancelled();
   if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
   else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);

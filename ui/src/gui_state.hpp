@@ -113,7 +113,7 @@ struct SimulationSettings {
   bool staged_dynamics = false;
   /// After a run whose result has a triangle with an angle below the Remesh tool's limit
   /// (RemeshDraft::below_angle, within its small_angle_radius): remesh there and settle again
-  /// (app::keep_angle_ops), as two more runs.
+  /// (app::keep_angle_plan: one remesh per such object, then one solve), as more runs.
   bool keep_angle = true;
   /// A run with nothing to relax: a static solve of every load (app::static_solve_op), or
   /// (false) the implicit dynamics of `steps` steps of `dt`.
@@ -153,13 +153,16 @@ struct GuiState {
   std::size_t plan_steps_shown = 0;  ///< steps when the list was last drawn (it scrolls to a new one)
   float pressure_mmhg = 80.0f;
   SimulationSettings simulation;
-  /// Simulate ops still to start, in order, once the running one has succeeded (the flap
-  /// method's second phase); emptied when a run fails or is cancelled.
+  /// Ops still to start, in order, once the running one has succeeded (the flap method's
+  /// second phase; the keep-angle step's remeshes and settle); emptied when a run fails or is
+  /// cancelled.
   std::deque<nlohmann::json> queued_runs;
-  /// The runs Run simulation started end with the keep-angle check (SimulationSettings::
-  /// keep_angle), and the queued runs are its remesh and settle (keeping_angle).
+  /// The runs Run simulation started end with the keep-angle step (SimulationSettings::
+  /// keep_angle, keep_angle.hpp); while its runs go on (keeping_angle), the plan had
+  /// keep_angle_plan_applied steps in effect before them.
   bool keep_angle_after_run = false;
   bool keeping_angle = false;
+  std::size_t keep_angle_plan_applied = 0;
   /// The running op: when it started, and its number among the runs the last Run simulation
   /// started (progress_text).
   std::chrono::steady_clock::time_point run_started;

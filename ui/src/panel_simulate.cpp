@@ -92,7 +92,8 @@ void simulate_section(GuiState& s) {
   tooltip_for_last_item(
       "After the run, where a triangle of the result has an angle below the Remesh tool's limit "
       "(20 degrees unless changed there): remesh the faces around it (within the tool's distance) "
-      "and settle again, as an energy minimisation. Two more steps of the plan, recorded as such.");
+      "and settle again (an energy minimisation where the loads have one). More steps of the plan, "
+      "recorded as such; taken back if the settle fails or is cancelled. Objects not held are left as they are.");
   ImGui::EndDisabled();
 
   if (!running) {

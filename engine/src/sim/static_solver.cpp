@@ -126,9 +126,11 @@ StaticResult solve_static(const ShellSystem& sys, ShellState& state, const Stati
   }
   double energy_scale =
       std::max({force * characteristic_length(state), params.energy_reference, 1e-30});
-  // The start state's own strain energy counts as converged too: a solve without loads from a
-  // stressed shape (a sutured vessel settling after a remesh) starts with it, and without it
-  // the first iterate's energy would read as an explosion. One evaluation, O(F).
+  // The start state's own strain energy floors the reference too: a solve without loads from a
+  // stressed shape (a sutured vessel settling after a remesh, not quite in equilibrium) starts
+  // with it, and without it the first iterate's energy would read as an explosion. It only
+  // loosens the check (a start whose energy is already huge makes it weak for that solve; the
+  // non-finite and collapse tests still hold). One evaluation, O(F).
   const double start_energy = evaluate(sys, map, state, params.lambda_start, false).internal_energy;
   if (std::isfinite(start_energy)) energy_scale = std::max(energy_scale, start_energy);
   // A load-stepped energy minimisation starts its quasi-Newton steps from the tangent at the

@@ -137,7 +137,6 @@ TEST(StaticSolver, SettlesAPrestressedBodyWithoutLoads) {
     // the free long edges draw in and release ey, except near the clamps (measured 0.533).
     EXPECT_GT(r.energy, 0.5 * start);
     EXPECT_LT(r.energy, 0.56 * start);
-    EXPECT_EQ(c.tip_displacement().x(), 0.0);
   }
 }
 

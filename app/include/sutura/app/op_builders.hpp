@@ -97,6 +97,13 @@ nlohmann::json remesh_small_angles_op(const std::string& object, double below_an
 /// shape can run off), else by Newton. Empty when none is below.
 std::vector<nlohmann::json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle,
                                            double radius, bool minimize, bool collapse_barrier);
+/// keep_angle_ops for the shapes of `workspace` (smallest_angles), as the window runs them
+/// after a run: only objects that are restrained (a settle of a free-floating one has no
+/// unique equilibrium: it is left as it is), settled by energy minimisation where their loads
+/// have a potential (loads_have_potential). Empty when no such object is below the limit.
+/// Cost O(F log F).
+std::vector<nlohmann::json> keep_angle_plan(const Workspace& workspace, double below_angle, double radius,
+                                            bool collapse_barrier);
 /// The static equilibrium under every load (the window's Simulate with nothing to relax, *Static
 /// equilibrium*): {"op": "solve", "load_steps": 4, "check_stability": true}, with "minimize"
 /// when `minimize` (loads_have_potential) and "collapse_barrier" when `collapse_barrier`.

@@ -3,6 +3,7 @@
 // merging them into one ShellSystem with disjoint node ranges (so contact between them can be
 // added as one more term), and the result is written back to each object.
 #include <memory>
+#include <set>
 #include <span>
 #include <string>
 #include <utility>
@@ -47,10 +48,14 @@ std::string solve_advice(const std::string& message, bool minimize, bool conserv
 
 /// Whether the loads on the named objects of `workspace` (all of them when `objects` is
 /// empty), solved together at full value, have a potential energy: no pressure ends at a rim
-/// free to move (engine::free_pressure_rim). Then a static solve of them can be an energy
+/// free to move (free_pressure_rims). Then a static solve of them can be an energy
 /// minimisation ("minimize"). Throws std::invalid_argument for an unknown object.
 /// Cost O(F log F), on copies of the objects.
 bool loads_have_potential(const Workspace& workspace, const std::vector<std::string>& objects = {});
+
+/// Whether no rigid-body motion of the object is free (engine::free_rigid_motions of its
+/// state and constraints): a static solve of it has a unique equilibrium. O(fixed DOFs).
+bool restrained(const SceneObject& object);
 
 class MergedSystem {
  public:
@@ -91,5 +96,11 @@ class MergedSystem {
   engine::ShellState state_;
   Eigen::VectorXd velocity_;
 };
+
+/// The merged nodes (sorted) at which a pressure of the system's loads or fixed loads ends at a
+/// rim free to move (engine::free_pressure_rim): where the loads have no potential energy.
+/// Cost O(F log F).
+std::set<std::size_t> free_pressure_rims(const MergedSystem& merged);
+
 
 }  // namespace sutura::app

@@ -1,0 +1,27 @@
+#pragma once
+// The window's keep-angle step (SimulationSettings::keep_angle): after the runs that Run
+// simulation started, remesh where the shape shown has an angle below the Remesh tool's limit
+// and settle again (app::keep_angle_plan), as more runs; taken back whole (undone, recorded as
+// undo steps) when one of them fails or is cancelled, so the user's run keeps its result.
+#include <optional>
+#include <string>
+
+#include "gui_state.hpp"
+
+namespace sutura::ui {
+
+/// Starts the keep-angle runs after `run`, the last of the runs Run simulation started, if the
+/// workspace needs them; true when they started (the first running, the rest queued). What the
+/// run reported (its time, a warning about its equilibrium) is shown first. Errors (the plan
+/// could not be made or started) are shown and give false.
+bool start_keep_angle(GuiState& s, const ActionOutcome& run);
+
+/// Undoes the keep-angle steps done so far (s.keeping_angle), after `what` happened to one of
+/// its runs, and says so; the stage becomes Inspect with the shape the user's run left.
+void take_back_keep_angle(GuiState& s, const std::string& what);
+
+/// After the keep-angle runs: the warning when the shape shown still has an angle below the
+/// limit (the numbers: where, and that face's rest angle), or nullopt.
+std::optional<std::string> still_below_warning(const GuiState& s);
+
+}  // namespace sutura::ui
