@@ -71,6 +71,11 @@ json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_m
   throw std::invalid_argument("no face has material " + std::to_string(region));
 }
 
+json material_op(const SceneObject& obj, int region, std::optional<double> youngs_modulus,
+                 std::optional<double> poisson_ratio, std::optional<double> thickness) {
+  return material_op(obj.mesh, obj.sim.face_material, obj.name, region, youngs_modulus, poisson_ratio, thickness);
+}
+
 json fix_loop_op(const std::string& object, int loop, bool have_fix_op) {
   return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object},
           {"boundary", json::array({loop})}, {"dofs", json::array({"all"})}};

@@ -38,6 +38,20 @@ std::string Workspace::names() const {
   return s.empty() ? "(none)" : s;
 }
 
+bool has_pending_relaxation(const SceneObject& obj) { return obj.sim.relax_from.has_value(); }
+
+bool has_reference_positions(const SceneObject& obj) {
+  return obj.sim.reference.size() == obj.mesh.num_vertices();
+}
+
+std::vector<MaterialRegion> material_regions(const SceneObject& obj) {
+  std::vector<MaterialRegion> regions;
+  for (const engine::ShellMaterial& m : obj.sim.materials) regions.push_back({m, 0});
+  for (const int k : obj.sim.face_material)
+    if (k >= 0 && std::size_t(k) < regions.size()) ++regions[std::size_t(k)].faces;
+  return regions;
+}
+
 engine::Vec3 loop_centroid(const engine::SurfaceMesh& mesh, const std::vector<engine::VertexId>& loop) {
   engine::Vec3 c = engine::Vec3::Zero();
   for (const auto v : loop) c += mesh.position(v);

@@ -116,3 +116,20 @@ TEST(MaterialRegions, BadRegionsAreClearErrors) {
             "stray");
   EXPECT_NE(e.find("max_distance"), std::string::npos) << e;
 }
+
+// What the window lists: one region per material with its face count, which add up to the
+// object's faces; with the patch undone, every face is the wall's.
+TEST(MaterialRegions, TheRegionsListEachMaterialWithItsFaces) {
+  const ReplayResult r = run(kHeader + kPatchedTube, "list");
+  const std::vector<MaterialRegion> regions = material_regions(tube(r));
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_EQ(regions[0].material.youngs_modulus, 1.0);
+  EXPECT_EQ(regions[1].material.youngs_modulus, 3.0);
+  EXPECT_GT(regions[0].faces, 0u);
+  EXPECT_GT(regions[1].faces, 0u);
+  EXPECT_EQ(regions[0].faces + regions[1].faces, tube(r).mesh.num_faces());
+  const ReplayResult undone = run(kHeader + kPatchedTube + "{\"op\": \"undo\"}\n", "undone");
+  const std::vector<MaterialRegion> after = material_regions(tube(undone));
+  for (std::size_t k = 1; k < after.size(); ++k) EXPECT_EQ(after[k].faces, 0u);
+  EXPECT_EQ(after[0].faces, tube(undone).mesh.num_faces());
+}

@@ -210,3 +210,13 @@ TEST(OpBuilders, KeepingAnglesOnAWorkspaceLeavesObjectsThatAreNotHeld) {
   EXPECT_LT(squeezed, 20.0);
   EXPECT_TRUE(keep_angle_plan(w, squeezed, 0.6, false).empty());  // none strictly below
 }
+
+// The object form reads the object's mesh, materials by face and name.
+TEST(OpBuilders, AMaterialOfAnObjectIsThatOfItsMeshAndFaces) {
+  Workspace w;
+  w.add("a", sutura::engine::make_strip({}));
+  const SceneObject& o = *w.find("a");
+  EXPECT_EQ(material_op(o, 0, 2.5, std::nullopt, 1.0),
+            material_op(o.mesh, o.sim.face_material, "a", 0, 2.5, std::nullopt, 1.0));
+  EXPECT_THROW((void)material_op(o, 1, 2.5, std::nullopt, 1.0), std::invalid_argument);  // no patch
+}

@@ -112,6 +112,22 @@ TEST(SurgeryOps, TwoStripsReachTheSameClosedFormFromEitherPlacement) {
   EXPECT_NE(e.find("placement"), std::string::npos) << e;
 }
 
+// What the window asks of an object: a suture waits to be relaxed from the join until a
+// relaxing run; every vertex has its pre-operative position throughout.
+TEST(SurgeryOps, ASutureWaitsToBeRelaxedUntilARelaxingRun) {
+  const std::string text = two_strips_text();
+  const auto simulate = text.find("{\"op\": \"simulate\"");
+  ASSERT_NE(simulate, std::string::npos);
+  const ReplayResult joined = run(text.substr(0, simulate), "joined");
+  const SceneObject& j = joined.workspace.objects().front();
+  EXPECT_TRUE(has_pending_relaxation(j));
+  EXPECT_TRUE(has_reference_positions(j));
+  const ReplayResult relaxed = run(text, "relaxed");
+  const SceneObject& r = relaxed.workspace.objects().front();
+  EXPECT_FALSE(has_pending_relaxation(r));
+  EXPECT_TRUE(has_reference_positions(r));
+}
+
 TEST(SurgeryOps, UndoReturnsTheIdenticalMeshAndRedoTheEdit) {
   const std::string incise =
       "{\"op\": \"incise\", \"object\": \"t\", \"points\": [[4, 0, 5.3], [0, 4, 12.7]]}\n";

@@ -384,15 +384,13 @@ void material_controls(GuiState& s) {
     return;
   }
   MaterialDraft& d = s.material;
-  const auto& materials = obj->sim.materials;
-  const auto& face_material = obj->sim.face_material;
+  const std::vector<app::MaterialRegion> regions = app::material_regions(*obj);
   // A patch cut away entirely (a resection) has no faces left: back to the wall.
-  if (d.region < 0 || d.region >= int(materials.size()) ||
-      (d.region > 0 && std::find(face_material.begin(), face_material.end(), d.region) == face_material.end()))
+  if (d.region < 0 || d.region >= int(regions.size()) || (d.region > 0 && regions[std::size_t(d.region)].faces == 0))
     d.region = 0;
   if (d.loaded_object != s.object || d.loaded_region != d.region ||
       d.loaded_revision != s.controller.revision()) {
-    const engine::ShellMaterial& m = materials[std::size_t(d.region)];
+    const engine::ShellMaterial& m = regions[std::size_t(d.region)].material;
     d.youngs_modulus = float(m.youngs_modulus);
     d.poisson_ratio = float(m.poisson_ratio);
     d.thickness = float(m.thickness);
@@ -403,14 +401,14 @@ void material_controls(GuiState& s) {
     d.loaded_youngs_modulus = d.youngs_modulus, d.loaded_poisson_ratio = d.poisson_ratio,
     d.loaded_thickness = d.thickness;
   }
-  for (std::size_t k = 0; k < materials.size(); ++k) {
-    const auto faces = std::count(face_material.begin(), face_material.end(), int(k));
-    if (k > 0 && faces == 0) continue;  // a patch undone or cut away
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const app::MaterialRegion& r = regions[k];
+    if (k > 0 && r.faces == 0) continue;  // a patch undone or cut away
     if (noted_radio(s.widgets, k == 0 ? std::string("Wall") : "Patch " + std::to_string(k), d.region == int(k)))
       d.region = int(k);
     ImGui::SameLine();
-    ImGui::TextDisabled("E %.4g MPa, nu %.4g, %.4g mm, %ld faces", materials[k].youngs_modulus,
-                        materials[k].poisson_ratio, materials[k].thickness, long(faces));
+    ImGui::TextDisabled("E %.4g MPa, nu %.4g, %.4g mm, %ld faces", r.material.youngs_modulus,
+                        r.material.poisson_ratio, r.material.thickness, long(r.faces));
   }
   number_field("E [MPa]", &d.youngs_modulus, kMinE, kMaxE, 0.05f);
   s.widgets.note("E [MPa]");
@@ -431,7 +429,7 @@ void material_controls(GuiState& s) {
                                  : "This patch's material; the wall and other patches keep theirs.")) {
     const std::string name = obj->name;
     const int region = d.region;
-    const ActionOutcome r = s.controller.run(app::material_op(obj->mesh, face_material, name, region, e, nu, t));
+    const ActionOutcome r = s.controller.run(app::material_op(*obj, region, e, nu, t));
     if (!r.ok) {
       s.error(r.op + " failed: " + r.message);
       return;

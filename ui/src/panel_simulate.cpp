@@ -23,7 +23,7 @@ std::optional<std::string> relax_unsupported() {
 std::optional<std::string> nothing_to_relax(const GuiState& s) {
   if (s.controller.busy()) return std::nullopt;
   for (const auto& o : s.controller.workspace().objects())
-    if (o.sim.relax_from) return std::nullopt;
+    if (app::has_pending_relaxation(o)) return std::nullopt;
   return "No suture since the last relaxation: the run only settles.";
 }
 

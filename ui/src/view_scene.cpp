@@ -40,7 +40,7 @@ void ViewCache::update(const app::Workspace& workspace, std::uint64_t revision, 
     content.field = session_field(field);
     // Displacement needs each vertex's pre-operative position; without them the field is
     // dropped for this object (and said why) rather than drawn as zero.
-    if (field == ViewField::Displacement && obj.sim.reference.size() != obj.mesh.num_vertices()) {
+    if (field == ViewField::Displacement && !app::has_reference_positions(obj)) {
       problem_ = "Object '" + obj.name + "' has no reference positions for its vertices.";
       content.field = app::Field::None;
     }

@@ -44,6 +44,9 @@ nlohmann::json load_op(const std::string& object, const std::filesystem::path& f
 nlohmann::json material_op(const engine::SurfaceMesh& mesh, const std::vector<int>& face_material,
                            const std::string& object, int region, std::optional<double> youngs_modulus,
                            std::optional<double> poisson_ratio, std::optional<double> thickness);
+/// The same for a region of `obj` (its mesh, materials by face and name).
+nlohmann::json material_op(const SceneObject& obj, int region, std::optional<double> youngs_modulus,
+                           std::optional<double> poisson_ratio, std::optional<double> thickness);
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
 /// equivalent `constrain` op with a boundary selection.
 nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);

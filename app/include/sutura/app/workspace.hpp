@@ -37,6 +37,23 @@ struct SceneObject {
   std::vector<engine::VesselEnd> ends;
 };
 
+/// Whether a suture made since the last relaxing run waits to be relaxed (a pending y0). O(1).
+bool has_pending_relaxation(const SceneObject& obj);
+
+/// Whether every vertex has a pre-operative (reference) position, from which displacements are
+/// measured (they follow edits; a part added by an edit may have none). O(1).
+bool has_reference_positions(const SceneObject& obj);
+
+/// One material region of an object: the faces with one of its materials (the first is the
+/// wall, the others patches).
+struct MaterialRegion {
+  engine::ShellMaterial material;
+  std::size_t faces = 0;  ///< 0: a patch undone or cut away
+};
+
+/// The object's material regions, one per material, in the order of its materials. O(F).
+std::vector<MaterialRegion> material_regions(const SceneObject& obj);
+
 /// The mean position of `loop`'s vertices in `mesh` (a boundary loop's centre). O(loop).
 engine::Vec3 loop_centroid(const engine::SurfaceMesh& mesh, const std::vector<engine::VertexId>& loop);
 
