@@ -6,8 +6,9 @@
 #   `sutura gui` subcommand (app/src/gui_command.*) starts the GUI;
 # - ui/ reads the engine only for picking: the BVH and the mesh it is built on, in
 #   scene_picker.hpp and orbit_camera.hpp; everything else goes through sutura/app;
-# - ui/ reads no object's simulation data (SceneObject::sim: `.sim.` or `->sim.`) itself.
-# A comment that names it counts too: say it otherwise.
+# - ui/ reads no object's simulation data (SceneObject::sim, engine::SurfaceAttributes) itself:
+#   no member access `.sim` / `->sim` (spaces allowed) and no SurfaceAttributes. Any struct's
+#   member called sim counts, and so does a comment or a string that names one: say it otherwise.
 # Only direct includes are seen: what the ui gets through a session-layer header is the session
 # layer's to offer. Needs `lastpipe` (bash without job control, as ctest runs it).
 # Usage: check_includes.sh SOURCE_DIR. Prints every offending line; exit 1 if there is one, 2 if
@@ -36,7 +37,8 @@ includes "$src/app" | grep -E '["<]sutura/ui/|imgui|<GLFW/|glfw' | grep -vE '^[^
 includes "$src/ui" | grep -E '["<]sutura/engine/' \
   | grep -vE '^[^:]*/(scene_picker|orbit_camera)\.hpp:[0-9]+:#include "sutura/engine/(geometry/bvh|mesh)\.hpp"$' \
   | offend "ui: the engine only for picking"
-grep -rn --include='*.hpp' --include='*.cpp' -E '(\.|->)sim\.' "$src/ui" \
+grep -rn --include='*.hpp' --include='*.cpp' --include='*.h' --include='*.inl' \
+  -E '(\.|->)[[:space:]]*sim\b|SurfaceAttributes' "$src/ui" \
   | offend "ui: an object's simulation data through the session layer"
 [ "$status" -eq 0 ] && echo "layers: every #include keeps to its layer"
 exit "$status"

@@ -3,11 +3,8 @@
 // recorded, back to the shape the user's run left.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <thread>
-#include <unistd.h>
-
 #include "../../ui/src/keep_angle.hpp"
+#include "controller_fixture.hpp"
 #include "sutura/app/element_check.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
@@ -18,28 +15,11 @@ using nlohmann::json;
 
 namespace {
 
-struct Fixture {
-  fs::path dir;
-  std::unique_ptr<ui::SessionController> controller;
+// The controller's fixture with the window's state on it.
+struct Fixture : sutura::testing::ControllerFixture {
   std::unique_ptr<ui::GuiState> state;
-  explicit Fixture(const std::string& name) {
-    dir = fs::temp_directory_path() / ("sutura_keep_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    app::ReplayOptions o;
-    o.out_dir = dir / "out";
-    controller = std::make_unique<ui::SessionController>(ui::SessionRecorder::create(dir / "rec.jsonl", "test"), o);
-    state = std::make_unique<ui::GuiState>(*controller);
-  }
-  ~Fixture() { fs::remove_all(dir); }
-  // Waits for the running op, up to a minute.
-  std::optional<ui::ActionOutcome> wait() {
-    std::optional<ui::ActionOutcome> outcome;
-    for (int i = 0; i < 12000 && !outcome; ++i) {
-      outcome = controller->poll();
-      if (!outcome) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return outcome;
-  }
+  explicit Fixture(const std::string& name)
+      : ControllerFixture("keep_" + name), state(std::make_unique<ui::GuiState>(*controller)) {}
 };
 
 // A strip of long thin triangles (5 mm by 0.05 mm: angles of about half a degree), and its
@@ -53,6 +33,7 @@ std::string hash(const app::Workspace& w) { return app::position_hash(w.objects(
 
 }  // namespace
 
+// take_back_keep_angle as finish_worker calls it when a run of the step fails or is cancelled.
 TEST(KeepAngle, AFailedSettleIsUndoneWholeAndRecorded) {
   Fixture f("undo");
   ASSERT_TRUE(f.controller->run(kThinStrip).ok);
@@ -70,12 +51,14 @@ TEST(KeepAngle, AFailedSettleIsUndoneWholeAndRecorded) {
   run.details = {{"seconds", 1.5}, {"warning", "the relaxed shape is not a stable equilibrium (test)"}};
   ASSERT_TRUE(ui::start_keep_angle(s, run));
   EXPECT_TRUE(s.keeping_angle);
+  EXPECT_EQ(s.keep_angle_objects, std::vector<std::string>{"a"});
   ASSERT_EQ(s.queued_runs.size(), 1u);  // the settle, after this remesh
   EXPECT_EQ(s.queued_runs.front()["op"], "solve");
-  // The run's own warning is shown before the remesh's messages.
-  bool warned = false;
-  for (const auto& m : s.messages) warned = warned || (m.error && m.text.find("(test)") != std::string::npos);
-  EXPECT_TRUE(warned);
+  // The run's own warning is shown before the step's message.
+  ASSERT_GE(s.messages.size(), 2u);
+  EXPECT_TRUE(s.messages[s.messages.size() - 2].error);
+  EXPECT_NE(s.messages[s.messages.size() - 2].text.find("(test)"), std::string::npos);
+  EXPECT_NE(s.messages.back().text.find("remeshing there and settling again"), std::string::npos);
 
   const auto remeshed = f.wait();
   ASSERT_TRUE(remeshed && remeshed->ok) << (remeshed ? remeshed->message : "timeout");
@@ -111,8 +94,14 @@ TEST(KeepAngle, NothingStartsForAnObjectThatIsNotHeldNorAboveTheLimit) {
   ASSERT_TRUE(f.controller->run(kHoldRoot).ok);
   s.remesh.below_angle = 0.1f;  // below every angle
   EXPECT_FALSE(ui::start_keep_angle(s, run));
+  for (const auto& m : s.messages) EXPECT_FALSE(m.error) << m.text;  // nothing failed either
+  // The warning after the step is about the objects it remeshed only.
+  s.keep_angle_objects = {"a"};
   EXPECT_FALSE(ui::still_below_warning(s));
   s.remesh.below_angle = 20.0f;
+  s.keep_angle_objects = {"other"};
+  EXPECT_FALSE(ui::still_below_warning(s));
+  s.keep_angle_objects = {"a"};
   const auto warning = ui::still_below_warning(s);
   ASSERT_TRUE(warning);
   EXPECT_NE(warning->find("'a' still has an angle of 0"), std::string::npos) << *warning;

@@ -8,6 +8,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "controller_fixture.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 #include "sutura/ui/session_controller.hpp"
@@ -18,20 +19,7 @@ using nlohmann::json;
 
 namespace {
 
-struct Fixture {
-  fs::path dir;
-  std::unique_ptr<ui::SessionController> controller;
-  explicit Fixture(const std::string& name, int threads = 0) {
-    dir = fs::temp_directory_path() / ("sutura_ctl_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    app::ReplayOptions o;
-    o.out_dir = dir / "out";
-    o.threads = threads;
-    controller = std::make_unique<ui::SessionController>(
-        ui::SessionRecorder::create(dir / "rec.jsonl", "test"), o);
-  }
-  ~Fixture() { fs::remove_all(dir); }
-};
+using Fixture = sutura::testing::ControllerFixture;
 
 const json kStrip = {{"op", "generate"}, {"object", "a"}, {"shape", "strip"},
                      {"segments_length", 20}, {"segments_width", 4}};

@@ -93,7 +93,7 @@ void finish_worker(GuiState& s) {
       return;
     }
     s.keep_angle_after_run = false;
-    if (s.keeping_angle) return take_back_keep_angle(s, "the settle after the remesh could not start: " + why);
+    if (s.keeping_angle) return take_back_keep_angle(s, "the next run of the remesh of small angles could not start: " + why);
     s.queued_runs.clear();
     s.stages.simulation_cancelled();
     s.error(outcome->op + ": the next phase could not start: " + why);
@@ -139,8 +139,8 @@ void finish_worker(GuiState& s) {
   s.keep_angle_after_run = false;
   if (s.keeping_angle)
     return take_back_keep_angle(
-        s, outcome->cancelled ? outcome->op + " after the remesh was cancelled"
-                              : outcome->op + " after the remesh failed (" + outcome->message + ")");
+        s, outcome->cancelled ? "its " + outcome->op + " was cancelled"
+                              : "its " + outcome->op + " failed (" + outcome->message + ")");
   s.stages.simulation_cancelled();
   if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
   else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);
@@ -358,9 +358,13 @@ int run_gui(const GuiOptions& options) {
     if (state->open_requested && state->open_confirmed) {
       if (controller->busy()) {
         state->queued_runs.clear();
-        state->keep_angle_after_run = state->keeping_angle = false;
+        state->keep_angle_after_run = false;
         controller->cancel();
         while (controller->busy() && !controller->poll()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        // A remesh of small angles whose settle was cancelled is taken back, in this session's
+        // recording, before it is left.
+        if (state->keeping_angle) take_back_keep_angle(*state, "the settle was cancelled to open another session");
+        else state->stages.simulation_cancelled();
         state->info("The running simulation was cancelled to open another session");
       }
       if (!state->open_announced) {
@@ -448,8 +452,8 @@ int run_gui(const GuiOptions& options) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui::NewFrame();
     s.widgets.new_frame();
-    finish_worker(s);
     try {
+      finish_worker(s);
       menu_bar(s);
       quit_dialog(s);
       open_dialog(s);

@@ -163,6 +163,7 @@ struct GuiState {
   bool keep_angle_after_run = false;
   bool keeping_angle = false;
   std::size_t keep_angle_plan_applied = 0;
+  std::vector<std::string> keep_angle_objects;  ///< the objects the step remeshes and settles
   /// The running op: when it started, and its number among the runs the last Run simulation
   /// started (progress_text).
   std::chrono::steady_clock::time_point run_started;

@@ -27,6 +27,24 @@ bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
     return false;
   }
   if (ops.empty()) return false;
+  // Everything read from the workspace is read now: once the first op runs on the worker, the
+  // workspace is the worker's until it ends.
+  std::vector<std::string> objects;
+  for (const auto& name : ops.back()["objects"]) objects.push_back(name.get<std::string>());
+  std::string text = run.op + " finished; smallest angle";
+  char buf[96];
+  for (const app::SmallestAngle& a : app::smallest_angles(s.controller.workspace())) {
+    if (std::find(objects.begin(), objects.end(), a.object) == objects.end()) continue;
+    std::snprintf(buf, sizeof buf, " %.1f degrees", a.degrees);
+    text += " of '";
+    text += a.object;
+    text += "':";
+    text += buf;
+  }
+  std::snprintf(buf, sizeof buf, "%g", limit(s));
+  text += ", below ";
+  text += buf;
+  text += ": remeshing there and settling again (Simulate: keep triangles well shaped)";
   const std::size_t applied = s.controller.plan().applied;
   try {
     if (!s.start_run(ops.front(), s.run + 1, s.run + int(ops.size()), why)) {
@@ -40,25 +58,12 @@ bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
   s.queued_runs.assign(ops.begin() + 1, ops.end());
   s.keeping_angle = true;
   s.keep_angle_plan_applied = applied;
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%.2f", run.details.value("seconds", 0.0));
-  std::string text = run.op + " finished in " + buf + " s; smallest angle";
-  for (const app::SmallestAngle& a : app::smallest_angles(s.controller.workspace())) {
-    if (!(a.degrees < limit(s))) continue;
-    std::snprintf(buf, sizeof buf, " %.1f degrees", a.degrees);
-    text += " of '";
-    text += a.object;
-    text += "':";
-    text += buf;
-  }
-  std::snprintf(buf, sizeof buf, "%g", limit(s));
-  text += ", below ";
-  text += buf;
-  text += ": remeshing there and settling again (Simulate: keep triangles well shaped)";
-  s.info(text);
-  // The run's own verdict is not lost under the steps that follow.
+  s.keep_angle_objects = objects;
+  // The run's own verdict first: it stays the equilibrium shown if the step is taken back.
+  s.last_equilibrium = run.details.value("equilibrium", nlohmann::json());
   if (run.details.contains("warning") && run.details["warning"].is_string())
     s.error("warning: " + run.details["warning"].get<std::string>());
+  s.info(text);
   return true;
 }
 
@@ -69,12 +74,20 @@ void take_back_keep_angle(GuiState& s, const std::string& what) {
   while (undone && s.controller.plan().applied > s.keep_angle_plan_applied)
     undone = s.perform({{"op", "undo"}}, "Undone: the remesh of small angles");
   s.stages.simulation_finished();
-  s.error("warning: " + what +
-          "; the remesh of small angles is taken back: the shape is the one the run left, with its small angles");
+  if (undone)
+    s.error("warning: " + what +
+            "; the remesh of small angles is taken back: the shape is the one the run left, with its small angles");
+  else
+    s.error("warning: " + what +
+            "; the remesh of small angles could not be taken back (see the undo's error): the shape shown is "
+            "remeshed but not settled, so it is no equilibrium. Undo it from Plan steps, or simulate again");
 }
 
 std::optional<std::string> still_below_warning(const GuiState& s) {
-  const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
+  std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
+  std::erase_if(angles, [&](const app::SmallestAngle& a) {
+    return std::find(s.keep_angle_objects.begin(), s.keep_angle_objects.end(), a.object) == s.keep_angle_objects.end();
+  });
   const auto worst = std::min_element(angles.begin(), angles.end(),
                                       [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
   if (worst == angles.end() || !(worst->degrees < limit(s))) return std::nullopt;

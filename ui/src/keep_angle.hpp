@@ -11,17 +11,19 @@
 namespace sutura::ui {
 
 /// Starts the keep-angle runs after `run`, the last of the runs Run simulation started, if the
-/// workspace needs them; true when they started (the first running, the rest queued). What the
-/// run reported (its time, a warning about its equilibrium) is shown first. Errors (the plan
-/// could not be made or started) are shown and give false.
+/// workspace needs them; true when they started (the first running, the rest queued), with
+/// s.keep_angle_objects the objects they remesh and settle. What the run reported (a warning
+/// about its equilibrium; its equilibrium becomes s.last_equilibrium) is shown first. Errors
+/// (the plan could not be made or started) are shown and give false.
 bool start_keep_angle(GuiState& s, const ActionOutcome& run);
 
 /// Undoes the keep-angle steps done so far (s.keeping_angle), after `what` happened to one of
-/// its runs, and says so; the stage becomes Inspect with the shape the user's run left.
+/// its runs, and says so; the stage becomes Inspect with the shape the user's run left. If an
+/// undo fails (its error is shown), the warning says that the remesh stays, unsettled.
 void take_back_keep_angle(GuiState& s, const std::string& what);
 
-/// After the keep-angle runs: the warning when the shape shown still has an angle below the
-/// limit (the numbers: where, and that face's rest angle), or nullopt.
+/// After the keep-angle runs: the warning when one of the objects they remeshed still has an
+/// angle below the limit (the numbers: where, and that face's rest angle), or nullopt.
 std::optional<std::string> still_below_warning(const GuiState& s);
 
 }  // namespace sutura::ui

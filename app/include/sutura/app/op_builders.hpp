@@ -101,10 +101,12 @@ nlohmann::json remesh_small_angles_op(const std::string& object, double below_an
 std::vector<nlohmann::json> keep_angle_ops(const std::vector<SmallestAngle>& angles, double below_angle,
                                            double radius, bool minimize, bool collapse_barrier);
 /// keep_angle_ops for the shapes of `workspace` (smallest_angles), as the window runs them
-/// after a run: only objects that are restrained (a settle of a free-floating one has no
-/// unique equilibrium: it is left as it is), settled by energy minimisation where their loads
-/// have a potential (loads_have_potential). Empty when no such object is below the limit.
-/// Cost O(F log F).
+/// after a run: `below_angle` in degrees, `radius` in mm along the edges; only objects that
+/// are restrained (restrained(): a settle of a free-floating one has no unique equilibrium, so
+/// it is left as it is), settled in one solve, an energy minimisation when the loads of all of
+/// them have a potential (loads_have_potential), else Newton. Empty when no such object is
+/// below the limit. Throws as loads_have_potential and MergedSystem do (moments on a 3-DOF
+/// model). Cost O(F log F).
 std::vector<nlohmann::json> keep_angle_plan(const Workspace& workspace, double below_angle, double radius,
                                             bool collapse_barrier);
 /// The static equilibrium under every load (the window's Simulate with nothing to relax, *Static

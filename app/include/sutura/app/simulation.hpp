@@ -54,7 +54,8 @@ std::string solve_advice(const std::string& message, bool minimize, bool conserv
 bool loads_have_potential(const Workspace& workspace, const std::vector<std::string>& objects = {});
 
 /// Whether no rigid-body motion of the object is free (engine::free_rigid_motions of its
-/// state and constraints): a static solve of it has a unique equilibrium. O(fixed DOFs).
+/// state and constraints): a static solve of it has a unique equilibrium. Contact with another
+/// object is not counted. O(V).
 bool restrained(const SceneObject& object);
 
 class MergedSystem {

@@ -51,7 +51,8 @@ struct MaterialRegion {
   std::size_t faces = 0;  ///< 0: a patch undone or cut away
 };
 
-/// The object's material regions, one per material, in the order of its materials. O(F).
+/// The object's material regions, one per material, in the order of its materials (a face
+/// whose material index is out of range counts in none). O(materials + F).
 std::vector<MaterialRegion> material_regions(const SceneObject& obj);
 
 /// The mean position of `loop`'s vertices in `mesh` (a boundary loop's centre). O(loop).
