@@ -27,7 +27,7 @@ struct RigidMotion {
 /// axis). Empty when every rigid motion is restrained; all six when nothing is fixed. The
 /// rotations are scaled by the body's size, so "free" means a smallest singular value below
 /// 1e-6 of that of one fully held node: numerically free (three nodes nearly in line restrain
-/// the rotation about that line). Deterministic. Cost O(fixed DOFs).
+/// the rotation about that line). Deterministic. Cost O(V + fixed DOFs) (the body's centre and size).
 std::vector<RigidMotion> free_rigid_motions(const std::vector<Vec3>& x, const Constraints& c);
 
 }  // namespace sutura::engine
