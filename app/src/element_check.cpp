@@ -88,4 +88,11 @@ std::vector<SmallestAngle> smallest_angles(const Workspace& workspace) {
   return out;
 }
 
+std::optional<SmallestAngle> worst_angle(const std::vector<SmallestAngle>& angles) {
+  const auto worst = std::min_element(angles.begin(), angles.end(),
+                                      [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
+  if (worst == angles.end()) return std::nullopt;
+  return *worst;
+}
+
 }  // namespace sutura::app

@@ -6,6 +6,7 @@
 #include "../../ui/src/keep_angle.hpp"
 #include "controller_fixture.hpp"
 #include "sutura/app/element_check.hpp"
+#include "sutura/app/op_builders.hpp"
 #include "sutura/app/replay.hpp"
 #include "sutura/app/report.hpp"
 
@@ -76,6 +77,65 @@ TEST(KeepAngle, AFailedSettleIsUndoneWholeAndRecorded) {
   EXPECT_TRUE(s.messages.back().error);
   EXPECT_NE(s.messages.back().text.find("taken back"), std::string::npos) << s.messages.back().text;
   // The recording replays to the same shape (generate, fix, remesh, undo).
+  app::ReplayOptions o;
+  o.out_dir = f.dir / "replayed";
+  EXPECT_EQ(hash(app::replay(app::load_session(f.dir / "rec.jsonl"), o).workspace), before);
+}
+
+// retry_keep_angle_wider as finish_worker calls it when a run of the step fails: the step is
+// undone and tried once more within kWiderKeepAngleRadius times the radius; a second failure
+// takes it back for good.
+TEST(KeepAngle, AFailedSettleIsTriedOnceMoreWithAWiderRegion) {
+  Fixture f("retry");
+  ASSERT_TRUE(f.controller->run(kThinStrip).ok);
+  ASSERT_TRUE(f.controller->run(kHoldRoot).ok);
+  ui::GuiState& s = *f.state;
+  s.stages.mesh_loaded();
+  s.stages.simulation_started();
+  const std::string before = hash(f.controller->workspace());
+  const std::size_t applied = f.controller->plan().applied;
+  const double first = app::as_typed(s.remesh.small_angle_radius);
+
+  ui::ActionOutcome run;
+  run.op = "simulate";
+  run.ok = true;
+  ASSERT_TRUE(ui::start_keep_angle(s, run));
+  EXPECT_EQ(s.keep_angle_radius, first);
+  auto done = f.wait();
+  ASSERT_TRUE(done && done->ok) << (done ? done->message : "timeout");
+
+  ui::ActionOutcome failed;  // say the settle failed
+  failed.op = "solve";
+  failed.message = "no convergence (test)";
+  ASSERT_TRUE(ui::retry_keep_angle_wider(s, failed));
+  EXPECT_TRUE(s.keeping_angle);
+  EXPECT_DOUBLE_EQ(s.keep_angle_radius, ui::kWiderKeepAngleRadius * first);
+  ASSERT_EQ(s.queued_runs.size(), 1u);
+  EXPECT_EQ(s.queued_runs.front()["op"], "solve");
+  EXPECT_NE(s.messages.back().text.find("failed at its solve (no convergence (test))"), std::string::npos)
+      << s.messages.back().text;
+  EXPECT_NE(s.messages.back().text.find("instead and settling again"), std::string::npos) << s.messages.back().text;
+  done = f.wait();
+  ASSERT_TRUE(done && done->ok) << (done ? done->message : "timeout");
+  // In effect: the user's steps and the wider remesh (the first remesh is undone, not redone).
+  const app::Plan& plan = f.controller->plan();
+  ASSERT_EQ(plan.applied, applied + 1);
+  const nlohmann::json& remesh = plan.steps[plan.applied - 1].source;
+  EXPECT_EQ(remesh["op"], "remesh");
+  EXPECT_DOUBLE_EQ(remesh["radius"].get<double>(), ui::kWiderKeepAngleRadius * first);
+  EXPECT_NE(hash(f.controller->workspace()), before);
+
+  // The second attempt's settle fails too: taken back for good, no third attempt.
+  EXPECT_FALSE(ui::retry_keep_angle_wider(s, failed));
+  EXPECT_FALSE(s.keeping_angle);
+  EXPECT_FALSE(f.controller->busy());
+  EXPECT_TRUE(s.queued_runs.empty());
+  EXPECT_EQ(f.controller->plan().applied, applied);
+  EXPECT_EQ(hash(f.controller->workspace()), before);
+  EXPECT_EQ(s.stages.stage(), ui::Stage::Inspect);
+  EXPECT_TRUE(s.messages.back().error);
+  EXPECT_NE(s.messages.back().text.find("taken back"), std::string::npos) << s.messages.back().text;
+  // The recording (generate, fix, remesh, undo, remesh, undo) replays to the run's shape.
   app::ReplayOptions o;
   o.out_dir = f.dir / "replayed";
   EXPECT_EQ(hash(app::replay(app::load_session(f.dir / "rec.jsonl"), o).workspace), before);

@@ -115,10 +115,7 @@ void finish_worker(GuiState& s) {
       text += "; the relaxed shape is a stable equilibrium";
     if (outcome->op == "simulate" || outcome->op == "solve") {
       // The quality of the shape shown, which the keep-angle step looks after.
-      const std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
-      const auto worst = std::min_element(angles.begin(), angles.end(),
-                                          [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
-      if (worst != angles.end()) {
+      if (const auto worst = app::worst_angle(app::smallest_angles(s.controller.workspace()))) {
         char degrees[32];
         std::snprintf(degrees, sizeof degrees, "%.1f", worst->degrees);
         text += "; smallest angle ";
@@ -137,10 +134,12 @@ void finish_worker(GuiState& s) {
     return;
   }
   s.keep_angle_after_run = false;
-  if (s.keeping_angle)
-    return take_back_keep_angle(
-        s, outcome->cancelled ? "its " + outcome->op + " was cancelled"
-                              : "its " + outcome->op + " failed (" + outcome->message + ")");
+  if (s.keeping_angle && outcome->cancelled)
+    return take_back_keep_angle(s, "its " + outcome->op + " was cancelled");
+  if (s.keeping_angle) {
+    retry_keep_angle_wider(s, *outcome);
+    return;
+  }
   s.stages.simulation_cancelled();
   if (outcome->cancelled) s.info(outcome->op + " cancelled: the state before the run is restored");
   else s.error(outcome->op + " failed (state before the run restored): " + outcome->message);

@@ -13,17 +13,26 @@ namespace sutura::ui {
 namespace {
 
 double limit(const GuiState& s) { return app::as_typed(s.remesh.below_angle); }
+double first_radius(const GuiState& s) { return app::as_typed(s.remesh.small_angle_radius); }
 
-}  // namespace
+std::string mm(double r) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g mm", r);
+  return buf;
+}
 
-bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
+// Plans the step with a remesh within `radius` and starts its first run; `context` begins its
+// messages, `why_now` ends its message, and `warning_first` (when not empty) is shown as a
+// warning just before it. True when it started; false with an error shown, or without one when
+// nothing is below the limit.
+bool start_attempt(GuiState& s, const std::string& context, double radius, const std::string& why_now,
+                   const std::string& warning_first = {}) {
   std::vector<nlohmann::json> ops;
   std::string why;
   try {
-    ops = app::keep_angle_plan(s.controller.workspace(), limit(s), app::as_typed(s.remesh.small_angle_radius),
-                               s.simulation.collapse_barrier);
+    ops = app::keep_angle_plan(s.controller.workspace(), limit(s), radius, s.simulation.collapse_barrier);
   } catch (const std::exception& e) {
-    s.error(run.op + ": the remesh of small angles after the run could not be planned: " + e.what());
+    s.error(context + ": the remesh of small angles could not be planned: " + e.what());
     return false;
   }
   if (ops.empty()) return false;
@@ -31,7 +40,7 @@ bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
   // workspace is the worker's until it ends.
   std::vector<std::string> objects;
   for (const auto& name : ops.back()["objects"]) objects.push_back(name.get<std::string>());
-  std::string text = run.op + " finished; smallest angle";
+  std::string text = context + "; smallest angle";
   char buf[96];
   for (const app::SmallestAngle& a : app::smallest_angles(s.controller.workspace())) {
     if (std::find(objects.begin(), objects.end(), a.object) == objects.end()) continue;
@@ -44,35 +53,36 @@ bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
   std::snprintf(buf, sizeof buf, "%g", limit(s));
   text += ", below ";
   text += buf;
-  text += ": remeshing there and settling again (Simulate: keep triangles well shaped)";
+  text += ": " + why_now;
   const std::size_t applied = s.controller.plan().applied;
   try {
     if (!s.start_run(ops.front(), s.run + 1, s.run + int(ops.size()), why)) {
-      s.error(run.op + ": the remesh of small angles after the run could not start: " + why);
+      s.error(context + ": the remesh of small angles could not start: " + why);
       return false;
     }
   } catch (const std::exception& e) {
-    s.error(run.op + ": the remesh of small angles after the run could not start: " + e.what());
+    s.error(context + ": the remesh of small angles could not start: " + e.what());
     return false;
   }
   s.queued_runs.assign(ops.begin() + 1, ops.end());
   s.keeping_angle = true;
   s.keep_angle_plan_applied = applied;
   s.keep_angle_objects = objects;
-  // The run's own verdict first: it stays the equilibrium shown if the step is taken back.
-  s.last_equilibrium = run.details.value("equilibrium", nlohmann::json());
-  if (run.details.contains("warning") && run.details["warning"].is_string())
-    s.error("warning: " + run.details["warning"].get<std::string>());
+  s.keep_angle_radius = radius;
+  if (!warning_first.empty()) s.error("warning: " + warning_first);
   s.info(text);
   return true;
 }
 
-void take_back_keep_angle(GuiState& s, const std::string& what) {
-  s.queued_runs.clear();
-  s.keeping_angle = false;
+// Undoes the step's applied plan steps; false when an undo failed (its error is shown).
+bool undo_steps(GuiState& s) {
   bool undone = true;
   while (undone && s.controller.plan().applied > s.keep_angle_plan_applied)
     undone = s.perform({{"op", "undo"}}, "Undone: the remesh of small angles");
+  return undone;
+}
+
+void say_taken_back(GuiState& s, const std::string& what, bool undone) {
   s.stages.simulation_finished();
   if (undone)
     s.error("warning: " + what +
@@ -83,14 +93,53 @@ void take_back_keep_angle(GuiState& s, const std::string& what) {
             "remeshed but not settled, so it is no equilibrium. Undo it from Plan steps, or simulate again");
 }
 
+}  // namespace
+
+bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
+  // The run's own verdict first: it stays the equilibrium shown if the step is taken back.
+  const nlohmann::json& d = run.details;
+  if (!start_attempt(s, run.op + " finished", first_radius(s),
+                     "remeshing there and settling again (Simulate: keep triangles well shaped)",
+                     d.contains("warning") && d["warning"].is_string() ? d["warning"].get<std::string>() : ""))
+    return false;
+  s.last_equilibrium = d.is_object() ? d.value("equilibrium", nlohmann::json()) : nlohmann::json();
+  return true;
+}
+
+bool retry_keep_angle_wider(GuiState& s, const ActionOutcome& failed) {
+  const std::string what = "its " + failed.op + " failed (" + failed.message + ")";
+  const double first = first_radius(s), wider = kWiderKeepAngleRadius * first;
+  s.queued_runs.clear();
+  s.keeping_angle = false;
+  if (s.keep_angle_radius > first) {  // the second attempt failed too
+    say_taken_back(s, what, undo_steps(s));
+    return false;
+  }
+  if (!undo_steps(s)) {
+    say_taken_back(s, what, false);
+    return false;
+  }
+  if (start_attempt(s, "the remesh of small angles within " + mm(first) + " failed at its " + failed.op + " (" +
+                           failed.message + ")", wider,
+                    "remeshing within " + mm(wider) + " instead and settling again"))
+    return true;
+  say_taken_back(s, what, true);
+  return false;
+}
+
+void take_back_keep_angle(GuiState& s, const std::string& what) {
+  s.queued_runs.clear();
+  s.keeping_angle = false;
+  say_taken_back(s, what, undo_steps(s));
+}
+
 std::optional<std::string> still_below_warning(const GuiState& s) {
   std::vector<app::SmallestAngle> angles = app::smallest_angles(s.controller.workspace());
   std::erase_if(angles, [&](const app::SmallestAngle& a) {
     return std::find(s.keep_angle_objects.begin(), s.keep_angle_objects.end(), a.object) == s.keep_angle_objects.end();
   });
-  const auto worst = std::min_element(angles.begin(), angles.end(),
-                                      [](const auto& a, const auto& b) { return a.degrees < b.degrees; });
-  if (worst == angles.end() || !(worst->degrees < limit(s))) return std::nullopt;
+  const std::optional<app::SmallestAngle> worst = app::worst_angle(angles);
+  if (!worst || !(worst->degrees < limit(s))) return std::nullopt;
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "after the remesh and the settle, '%s' still has an angle of %.1f degrees near (%.1f, %.1f, %.1f) "

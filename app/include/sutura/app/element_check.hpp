@@ -45,4 +45,7 @@ struct SmallestAngle {
 /// SmallestAngle of every object with faces, in workspace order. O(total faces).
 std::vector<SmallestAngle> smallest_angles(const Workspace& workspace);
 
+/// The smallest of `angles` (the first of equals), or nullopt when it is empty. O(n).
+std::optional<SmallestAngle> worst_angle(const std::vector<SmallestAngle>& angles);
+
 }  // namespace sutura::app
