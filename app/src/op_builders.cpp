@@ -76,6 +76,12 @@ json material_op(const SceneObject& obj, int region, std::optional<double> young
   return material_op(obj.mesh, obj.sim.face_material, obj.name, region, youngs_modulus, poisson_ratio, thickness);
 }
 
+json bundled_arch_wall_op(const std::string& object) {
+  return {{"op", "material"}, {"object", object}, {"region", "wall"}, {"youngs_modulus", 1.0},
+          {"poisson_ratio", 0.45}, {"thickness", 0.6},
+          {"note", "the bundled arch sessions' neonatal aortic wall"}};
+}
+
 json fix_loop_op(const std::string& object, int loop, bool have_fix_op) {
   return {{"op", have_fix_op ? "fix" : "constrain"}, {"object", object},
           {"boundary", json::array({loop})}, {"dofs", json::array({"all"})}};

@@ -94,10 +94,17 @@ void open_controls(GuiState& s) {
   // click away: the aortic arch with its coarctation, and the pulmonary artery.
   const fs::path anatomy = fs::path(SUTURA_ASSETS_DIR) / "anatomy" / "coarse";
   if (gated_button(s.widgets, "Aortic arch", why,
-                   "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces)."))
-    s.perform(app::load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file(), false, 0.0,
-                      anatomy / "landmarks.json"),
-              "Loaded the bundled aortic arch");
+                   "The bundled neonatal aortic arch with a coarctation (coarse, 4.4k faces), with the "
+                   "bundled sessions' neonatal wall: E 1 MPa, nu 0.45, 0.6 mm (Materials of the selected "
+                   "object changes it)."))
+    // The wall as every bundled arch session has it, recorded as its own step: a loaded mesh
+    // otherwise has the engine's default material, 1 mm thick.
+    if (s.perform(app::load_op("aorta", anatomy / "aorta.ply", s.controller.recorder().file(), false, 0.0,
+                               anatomy / "landmarks.json"),
+                  "Loaded the bundled aortic arch"))
+      s.perform(app::bundled_arch_wall_op("aorta"),
+                "Loaded the bundled aortic arch, with the bundled sessions' neonatal wall: E 1 MPa, nu 0.45, "
+                "0.6 mm");
   ImGui::SameLine();
   if (gated_button(s.widgets, "Pulmonary artery", why,
                    "The bundled pulmonary artery beside the arch (coarse)."))

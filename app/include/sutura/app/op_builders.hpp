@@ -47,6 +47,11 @@ nlohmann::json material_op(const engine::SurfaceMesh& mesh, const std::vector<in
 /// The same for a region of `obj` (its mesh, materials by face and name).
 nlohmann::json material_op(const SceneObject& obj, int region, std::optional<double> youngs_modulus,
                            std::optional<double> poisson_ratio, std::optional<double> thickness);
+/// The wall material the bundled arch sessions give the bundled neonatal aorta (E 1 MPa,
+/// nu 0.45, 0.6 mm; assets/sessions/*.jsonl), as the `material` op of `object`'s wall, with a
+/// note saying so: what the window records after loading the bundled aortic arch. (The
+/// engine's default material, which a loaded mesh otherwise has, is 1 mm thick.)
+nlohmann::json bundled_arch_wall_op(const std::string& object);
 /// Fixes every DOF of boundary loop `loop`: the `fix` op when the build has it, else the
 /// equivalent `constrain` op with a boundary selection.
 nlohmann::json fix_loop_op(const std::string& object, int loop, bool have_fix_op);
