@@ -299,9 +299,10 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
   std::printf("%d cut, %d refused; band min angle %.1f deg (%d bands below 20); lips within %.2e mm of the traces\n",
               cut, refused, worst_angle, below_20, worst_lip);
   EXPECT_GT(cut, curves * 8 / 10);
-  // The smallest angles below 20 degrees that remain are forced by the drawing: a cut that ends
-  // or runs within a fraction of an edge of an open end, or meets it at a grazing angle
-  // (docs/remeshing.md gives the counts).
+  // The smallest angles below 20 degrees that remain are all where a cut ends or runs within
+  // a fraction of an edge of an open end (a gap narrower than the band's target length), or
+  // meets it at a grazing angle (a corner below 20 degrees: forced); docs/remeshing.md gives
+  // the counts.
   EXPECT_LE(below_20, cut / 80);
   EXPECT_LT(worst_lip, 1e-6);
 }
