@@ -42,7 +42,7 @@ engine::PcgParams pcg_defaults() {
 
 }  // namespace
 
-// Versions 1 to 3 share every value below (the versions differ in surgery ops only).
+// Versions 1 to 4 share every value below (the versions differ in surgery ops only).
 engine::StaticSolverParams static_solver_defaults(int version) {
   check_version(version);
   engine::StaticSolverParams p;

@@ -65,6 +65,10 @@ InciseOp parse_incise(Fields& f) {
   if (op.params.band_width > 20.0) f.fail("band_width", "must be at most 20 edge lengths");
   op.params.grading = f.optional_number("grading", op.params.grading);
   if (!(op.params.grading >= 1.0 && op.params.grading <= 10.0)) f.fail("grading", "must be in [1, 10]");
+  // Since version 4 a band left with a smaller angle is remeshed again, finer at the cut.
+  op.params.repair_below_deg = f.optional_number("repair_below_angle", f.format_version() >= 4 ? 20.0 : 0.0);
+  if (!(op.params.repair_below_deg >= 0.0 && op.params.repair_below_deg <= 40.0))
+    f.fail("repair_below_angle", "must be in [0, 40] degrees");
   if (op.params.mode == engine::IncisionMode::SnapToEdges && f.has("remesh") && op.params.remesh)
     f.fail("remesh", "a snapped incision follows mesh edges and is not remeshed");
   if (op.params.mode == engine::IncisionMode::SnapToEdges) op.params.remesh = false;

@@ -404,6 +404,35 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherAnIncisionIsRemeshed) {
 
 const std::string kHeader3 = "{\"format\": \"sutura-session\", \"version\": 3}\n";
 
+nlohmann::json action(const ReplayResult& r, const std::string& op) {
+  for (const auto& a : r.report["actions"])
+    if (a["op"] == op) return a;
+  return {};
+}
+
+// Version 4 remeshes a band left below 20 degrees again, finer at the cut (an incision 0.3 mm
+// from the tube's open end, with 1 mm edges); version 3 sessions keep the band as it was.
+TEST(SurgeryOps, TheSessionVersionDecidesWhetherAThinBandIsRemeshedAgain) {
+  std::string incise = "{\"op\": \"incise\", \"object\": \"t\", \"points\": [";
+  for (int i = 0; i < 7; ++i) {
+    const double a = 0.1 + 0.25 * i;
+    incise += (i ? ", [" : "[") + std::to_string(4.0 * std::cos(a)) + ", " + std::to_string(4.0 * std::sin(a)) + ", 0.3]";
+  }
+  incise += "]}\n";
+  const auto band = [&](const std::string& header, const std::string& text, const std::string& name) {
+    return action(run(header + kTube + text, name), "incise")["remesh"]["after"]["min_angle_deg"].get<double>();
+  };
+  EXPECT_LT(band(kHeader3, incise, "thin_v3"), 20.0);
+  EXPECT_GE(band("{\"format\": \"sutura-session\", \"version\": 4}\n", incise, "thin_v4"), 20.0);
+  std::string off = incise;
+  off.insert(off.size() - 2, ", \"repair_below_angle\": 0");
+  EXPECT_LT(band("{\"format\": \"sutura-session\", \"version\": 4}\n", off, "thin_v4_off"), 20.0);
+  std::string bad = incise;
+  bad.insert(bad.size() - 2, ", \"repair_below_angle\": 45");
+  const std::string e = failure(kHeader3 + kTube + bad, 3);
+  EXPECT_NE(e.find("repair_below_angle"), std::string::npos) << e;
+}
+
 // Two strips whose facing edges have 4 and 7 pieces, 0.01 mm apart, sutured.
 const std::string kStripsJoin =
     "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 4, "
@@ -413,11 +442,6 @@ const std::string kStripsJoin =
     "{\"op\": \"join\", \"object\": \"s\", \"chains\": [{\"from\": [10, -2, 0], \"to\": [10, 2, 0]}, "
     "{\"from\": [10.01, 2, 0], \"to\": [10.01, -2, 0]}]}\n";
 
-nlohmann::json action(const ReplayResult& r, const std::string& op) {
-  for (const auto& a : r.report["actions"])
-    if (a["op"] == op) return a;
-  return {};
-}
 
 // Version 3 matches the seams before a join (nothing inserted, no sliver beside the seam);
 // version 2 sessions pair by arc length as they did.

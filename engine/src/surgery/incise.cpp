@@ -235,32 +235,11 @@ int degenerate_face(const detail::TriangleSoup& soup, std::size_t original_faces
   return -1;
 }
 
-// Remeshes the band around the traced cut `c` of `refined` (an edit of `mesh` by `maps`), the
-// cut kept as a constrained polyline; updates all three to the remeshed mesh.
-void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
-                 const IncisionParams& params, SurfaceMesh& refined, EditMaps& maps,
-                 std::vector<VertexId>& c, IncisionResult& result) {
-  const double L = params.target_edge_length > 0.0 ? params.target_edge_length
-                                                   : mean_edge_length(mesh, host_faces);
-  // Not band_around: the cut is open even where its two ends happen to be adjacent.
-  std::vector<Vec3> trace;
-  for (const VertexId v : c) trace.push_back(refined.position(v));
-  RemeshParams rp;
-  rp.target_edge_length = L;
-  rp.region = faces_near_polyline(refined, trace, params.band_width * L);
-  rp.grading = params.grading;
-  if (params.grading > 1.0) rp.grading_curve = trace;
-  rp.constrained_edges = carry_edges(maps, refined, params.constrained_edges);
-  for (std::size_t i = 0; i + 1 < c.size(); ++i) rp.constrained_edges.emplace_back(c[i], c[i + 1]);
-  rp.constrained_vertices.assign(refined.num_vertices(), false);
-  for (std::size_t v = 0; v < refined.num_vertices() && !params.constrained_vertices.empty(); ++v) {
-    const VertexOrigin& o = maps.vertices[v];
-    if (o.parents.size() == 1 && o.parents[0].index() < params.constrained_vertices.size())
-      rp.constrained_vertices[v] = params.constrained_vertices[o.parents[0].index()];
-  }
-  // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
-  // would be that edge, and the slit would close).
-  rp.constrained_vertices[c[c.size() / 2].index()] = true;
+// Remeshes `refined` with `rp` (the cut `c` among its constrained edges) and updates `refined`,
+// `maps` (from the mesh passed to incise) and `c` to the result; returns the remesh's result
+// without its mesh.
+RemeshResult remesh_keeping_cut(const RemeshParams& rp, SurfaceMesh& refined, EditMaps& maps,
+                                std::vector<VertexId>& c) {
   RemeshResult r = remesh(refined, rp);
   // The cut again, as the chain of constrained edges from the (kept) first vertex to the last.
   std::vector<VertexId> image(refined.num_vertices());
@@ -288,10 +267,68 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   }
   maps = compose(maps, r.maps);
   refined = std::move(r.mesh);
+  r.mesh = SurfaceMesh();
   c = std::move(chain);
+  return r;
+}
+
+// Remeshes the band around the traced cut `c` of `refined` (an edit of `mesh` by `maps`), the
+// cut kept as a constrained polyline; updates all three to the remeshed mesh. Where the band
+// still has an angle below params.repair_below_deg, the band's faces near it are remeshed
+// once more at their own mean edge length.
+void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
+                 const IncisionParams& params, SurfaceMesh& refined, EditMaps& maps,
+                 std::vector<VertexId>& c, IncisionResult& result) {
+  const double L = params.target_edge_length > 0.0 ? params.target_edge_length
+                                                   : mean_edge_length(mesh, host_faces);
+  // Not band_around: the cut is open even where its two ends happen to be adjacent.
+  std::vector<Vec3> trace;
+  for (const VertexId v : c) trace.push_back(refined.position(v));
+  RemeshParams rp;
+  rp.target_edge_length = L;
+  rp.region = faces_near_polyline(refined, trace, params.band_width * L);
+  rp.grading = params.grading;
+  if (params.grading > 1.0) rp.grading_curve = trace;
+  rp.constrained_edges = carry_edges(maps, refined, params.constrained_edges);
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) rp.constrained_edges.emplace_back(c[i], c[i + 1]);
+  rp.constrained_vertices.assign(refined.num_vertices(), false);
+  for (std::size_t v = 0; v < refined.num_vertices() && !params.constrained_vertices.empty(); ++v) {
+    const VertexOrigin& o = maps.vertices[v];
+    if (o.parents.size() == 1 && o.parents[0].index() < params.constrained_vertices.size())
+      rp.constrained_vertices[v] = params.constrained_vertices[o.parents[0].index()];
+  }
+  // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
+  // would be that edge, and the slit would close).
+  rp.constrained_vertices[c[c.size() / 2].index()] = true;
+  const SurfaceMesh raw = refined;
+  const EditMaps raw_maps = maps;
+  const std::vector<VertexId> raw_cut = c;
+  const RemeshResult band = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
-  result.band_before = r.before;
-  result.band_after = r.after;
+  result.band_before = band.before;
+  result.band_after = band.after;
+  if (!(band.after.min_angle_deg < params.repair_below_deg)) return;
+
+  // Again from the raw cut, finer at the cut and graded out to the host's spacing: the finest
+  // of kRepairTargets that lifts the band above the limit, else the best of them.
+  double best = band.after.min_angle_deg;
+  for (const double fraction : kRepairTargets) {
+    SurfaceMesh m = raw;
+    EditMaps mm = raw_maps;
+    std::vector<VertexId> cc = raw_cut;
+    RemeshParams finer = rp;
+    finer.target_edge_length = fraction * L;
+    finer.grading = std::max(params.grading, 1.5);
+    finer.grading_curve = trace;
+    const RemeshResult second = remesh_keeping_cut(finer, m, mm, cc);
+    if (!(second.after.min_angle_deg > best)) continue;
+    best = second.after.min_angle_deg;
+    refined = std::move(m);
+    maps = std::move(mm);
+    c = std::move(cc);
+    result.band_after = second.after;
+    if (!(best < params.repair_below_deg)) break;
+  }
 }
 
 // An end of the curve within `fraction` of its face's mean edge length from the open boundary
@@ -333,6 +370,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     throw InvalidArgument("end_snap must be in [0, 0.5]");
   if (!(params.band_width > 0.0 && params.band_width <= 20.0))
     throw InvalidArgument("band_width must be in (0, 20] target edge lengths");
+  if (!(params.repair_below_deg >= 0.0 && params.repair_below_deg <= 40.0))
+    throw InvalidArgument("repair_below_deg must be in [0, 40] degrees");
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
     throw InvalidArgument("constrained_vertices: one flag per vertex");
   // Crossings are inserted where the curve is, with or without the band remesh (which removes

@@ -232,40 +232,70 @@ TEST(Incise, ACurveCrossingItselfInsideAFaceIsRefused) {
   }
 }
 
+// A smooth curve drawn on `arch`: a walk over the surface from a random face, its heading
+// turning smoothly; 2 to 400 points, 2 to 14 mm long.
+std::vector<Vec3> random_smooth_curve(const SurfaceMesh& arch, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const FaceId f0(static_cast<std::int32_t>(unit(rng) * arch.num_faces()));
+  const auto fv = arch.face_vertices(f0);
+  Vec3 p = (arch.position(fv[0]) + arch.position(fv[1]) + arch.position(fv[2])) / 3.0;
+  Vec3 heading = (arch.position(fv[1]) - arch.position(fv[0])).normalized();
+  const int count = 2 + static_cast<int>(std::pow(unit(rng), 2.0) * 398.0);
+  const double length = 2.0 + 12.0 * unit(rng), step = length / (count - 1);
+  const double turn = (unit(rng) - 0.5) * 0.6 / length;  // rad per mm
+  std::vector<Vec3> points{p};
+  for (int i = 1; i < count; ++i) {
+    const SurfacePoint sp = closest_surface_point(arch, p + step * heading);
+    const auto t = arch.face_vertices(sp.face);
+    const Vec3 normal = (arch.position(t[1]) - arch.position(t[0]))
+                            .cross(arch.position(t[2]) - arch.position(t[0]))
+                            .normalized();
+    heading = (sp.position - p).normalized();
+    heading = Eigen::AngleAxisd(turn * step, normal) * (heading - heading.dot(normal) * normal).normalized();
+    p = sp.position;
+    points.push_back(p);
+  }
+  return points;
+}
+
+// The largest distance (mm) of a lip vertex of `r` from the trace of `points` (the lips of the
+// raw cut, made of its exact crossings).
+double lips_from_trace(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const IncisionResult& r) {
+  const IncisionResult trace = incise(mesh, points, raw());
+  std::vector<Vec3> line;
+  for (const VertexId v : trace.right) line.push_back(trace.mesh.position(v));
+  double worst = 0.0;
+  for (const VertexId v : r.right) {
+    const Vec3& x = r.mesh.position(v);
+    double to_trace = 1e300;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Vec3 d = line[i + 1] - line[i];
+      const double s = std::clamp((x - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      to_trace = std::min(to_trace, (x - line[i] - s * d).norm());
+    }
+    worst = std::max(worst, to_trace);
+  }
+  return worst;
+}
+
+SurfaceMesh coarse_arch() { return load_mesh(std::string(SUTURA_ASSETS_DIR) + "/anatomy/coarse/aorta.ply"); }
+
 // Random smooth curves on the bundled coarse arch, drawn as a surgeon's drag gives them (2 to
 // 400 points, turning gently, 2 to 14 mm long): every one is either cut with the band remesh,
 // its lips on the surface and on the drawn curve, or refused with a clear message (it ran
 // into an open end); never an internal error. The band's smallest angles are reported, and all
-// but a few (forced by the drawing) are at least 20 degrees.
+// but a few are at least 20 degrees: 3 and 4 of the two seeds' curves since 2026-12-07, where a cut
+// meets an open end at a grazing angle or runs within a fraction of an edge of it.
 // 2,000 curves in two halves of 1,000 (two seeds), which ctest runs side by side.
 void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
-  const SurfaceMesh arch = load_mesh(std::string(SUTURA_ASSETS_DIR) + "/anatomy/coarse/aorta.ply");
+  const SurfaceMesh arch = coarse_arch();
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   int cut = 0, refused = 0, below_20 = 0;
   double worst_angle = 180.0, worst_lip = 0.0;
   const int curves = 1000;
   for (int n = 0; n < curves; ++n) {
-    // A walk over the surface from a random face, its heading turning smoothly.
-    const FaceId f0(static_cast<std::int32_t>(unit(rng) * arch.num_faces()));
-    const auto fv = arch.face_vertices(f0);
-    Vec3 p = (arch.position(fv[0]) + arch.position(fv[1]) + arch.position(fv[2])) / 3.0;
-    Vec3 heading = (arch.position(fv[1]) - arch.position(fv[0])).normalized();
-    const int count = 2 + static_cast<int>(std::pow(unit(rng), 2.0) * 398.0);
-    const double length = 2.0 + 12.0 * unit(rng), step = length / (count - 1);
-    const double turn = (unit(rng) - 0.5) * 0.6 / length;  // rad per mm
-    std::vector<Vec3> points{p};
-    for (int i = 1; i < count; ++i) {
-      const SurfacePoint sp = closest_surface_point(arch, p + step * heading);
-      const auto t = arch.face_vertices(sp.face);
-      const Vec3 normal = (arch.position(t[1]) - arch.position(t[0]))
-                              .cross(arch.position(t[2]) - arch.position(t[0]))
-                              .normalized();
-      heading = (sp.position - p).normalized();
-      heading = Eigen::AngleAxisd(turn * step, normal) * (heading - heading.dot(normal) * normal).normalized();
-      p = sp.position;
-      points.push_back(p);
-    }
+    const std::vector<Vec3> points = random_smooth_curve(arch, rng);
+    const std::size_t count = points.size();
     SCOPED_TRACE("curve " + std::to_string(n) + ", " + std::to_string(count) + " points");
     IncisionResult r;
     try {
@@ -279,20 +309,7 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
     ++cut;
     ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
     ASSERT_TRUE(r.remeshed);
-    // The curve's surface trace: the lips of the raw cut, made of its exact crossings.
-    const IncisionResult trace = incise(arch, points, raw());
-    std::vector<Vec3> line;
-    for (const VertexId v : trace.right) line.push_back(trace.mesh.position(v));
-    for (const VertexId v : r.right) {
-      const Vec3& x = r.mesh.position(v);
-      double to_trace = 1e300;
-      for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-        const Vec3 d = line[i + 1] - line[i];
-        const double s = std::clamp((x - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
-        to_trace = std::min(to_trace, (x - line[i] - s * d).norm());
-      }
-      worst_lip = std::max(worst_lip, to_trace);
-    }
+    worst_lip = std::max(worst_lip, lips_from_trace(arch, points, r));
     worst_angle = std::min(worst_angle, r.band_after.min_angle_deg);
     below_20 += r.band_after.min_angle_deg < 20.0;
   }
@@ -302,8 +319,8 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
   // The smallest angles below 20 degrees that remain are all where a cut ends or runs within
   // a fraction of an edge of an open end (a gap narrower than the band's target length), or
   // meets it at a grazing angle (a corner below 20 degrees: forced); docs/remeshing.md gives
-  // the counts.
-  EXPECT_LE(below_20, cut / 80);
+  // the counts (12 of the 2,000 before the second, finer remesh of such bands, 7 with it).
+  EXPECT_LE(below_20, cut / 160);
   EXPECT_LT(worst_lip, 1e-6);
 }
 
@@ -313,6 +330,43 @@ TEST(Incise, RandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
 
 TEST(Incise, MoreRandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
   cut_random_smooth_curves_on_the_arch(20261204);
+}
+
+// A band left below 20 degrees by a cut that runs close to an open end (curve 685 of the first
+// seed's random curves) is remeshed again, finer at the cut: above 20 degrees, the lips still
+// on the drawn curve. With repair_below_deg 0 (session format 3) it stays as it was.
+TEST(Incise, ABandLeftBelowTheLimitIsRemeshedAgainFinerAtTheCut) {
+  const SurfaceMesh arch = coarse_arch();
+  std::mt19937 rng(20261203);
+  std::vector<Vec3> points;
+  for (int n = 0; n <= 685; ++n) points = random_smooth_curve(arch, rng);
+  IncisionParams off;
+  off.repair_below_deg = 0.0;
+  const IncisionResult before = incise(arch, points, off);
+  ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
+  const IncisionResult after = incise(arch, points);
+  EXPECT_GE(after.band_after.min_angle_deg, 20.0);
+  EXPECT_GE(mesh_quality(after.mesh).min_angle_deg, 20.0);  // the whole mesh, not only the band
+  EXPECT_TRUE(after.mesh.validate().ok());
+  EXPECT_LT(lips_from_trace(arch, points, after), 1e-6);
+  // Finer at the cut: more lip vertices than the first band remesh left.
+  EXPECT_GT(after.right.size(), before.right.size());
+  EXPECT_THROW(incise(arch, points, [] { IncisionParams p; p.repair_below_deg = 41.0; return p; }()), InvalidArgument);
+  EXPECT_THROW(incise(arch, points, [] { IncisionParams p; p.repair_below_deg = -1.0; return p; }()), InvalidArgument);
+  // A band above the limit is left as the first remesh made it: the first random curve that is
+  // cut gives the same mesh with the repair on and off.
+  std::mt19937 other(20261204);
+  for (int n = 0; n < 20; ++n) {
+    const std::vector<Vec3> curve = random_smooth_curve(arch, other);
+    try {
+      const IncisionResult plain = incise(arch, curve, off);
+      if (plain.band_after.min_angle_deg < 20.0) continue;
+      EXPECT_EQ(incise(arch, curve).mesh.positions(), plain.mesh.positions()) << "curve " << n;
+      return;
+    } catch (const InvalidArgument&) {
+    }
+  }
+  ADD_FAILURE() << "none of 20 random curves was cut with a band above 20 degrees";
 }
 
 TEST(Incise, IsDeterministic) {

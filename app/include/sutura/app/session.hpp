@@ -40,8 +40,10 @@ namespace sutura::app {
 /// (docs/session-format.md lists them). 2: `incise` remeshes the band around a cut-through
 /// incision unless "remesh": false. 3: `join`, `patch` and `resect` match their seams (both
 /// chains resampled to one spacing and remeshed around before the suture) and `resect`
-/// remeshes the band around its cut, unless "remesh": false.
-inline constexpr int kSessionFormatVersion = 3;
+/// remeshes the band around its cut, unless "remesh": false. 4: a cut-through `incise` whose
+/// band keeps an angle below 20 degrees remeshes it again, finer at the cut
+/// ("repair_below_angle").
+inline constexpr int kSessionFormatVersion = 4;
 
 /// A session that cannot be read or run. `what()` reads "FILE:LINE: op 'OP': field 'F': problem"
 /// with the parts that are known.

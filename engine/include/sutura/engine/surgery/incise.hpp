@@ -24,6 +24,10 @@ enum class IncisionMode {
 /// Parses "snap" | "cut"; throws InvalidArgument otherwise.
 IncisionMode parse_incision_mode(const std::string& name);
 
+/// IncisionParams::repair_below_deg's band remeshes, their target edge lengths at the cut as
+/// fractions of the band's, tried in this order.
+inline constexpr double kRepairTargets[] = {0.6, 0.45, 0.3};
+
 struct IncisionParams {
   IncisionMode mode = IncisionMode::CutThroughFaces;
   /// mm, > 0: a curve point farther than this from the surface is rejected ("off the surface").
@@ -43,6 +47,12 @@ struct IncisionParams {
   double band_width = 2.0;
   /// >= 1: edge growth per band away from the cut (1 = uniform; see RemeshParams::grading).
   double grading = 1.0;
+  /// Degrees, in [0, 40]: where the remeshed band still has a face with a smaller angle (a
+  /// cut that runs or ends within about half an edge of the open boundary leaves a gap
+  /// narrower than the band's edges), the band's faces within kRepairRadius target edge
+  /// lengths (along the edges) of such a face are remeshed once more, at their own mean edge
+  /// length, the cut kept. 0: off (session format 3 and older).
+  double repair_below_deg = 20.0;
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;
