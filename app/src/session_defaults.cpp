@@ -24,6 +24,12 @@ static_assert(sizeof(engine::UnloadParams) == 184, "UnloadParams changed: pin th
 static_assert(sizeof(engine::ContactParams) == 24, "ContactParams changed: pin the new field in contact_defaults");
 static_assert(sizeof(engine::AreaBarrierParams) == 16,
               "AreaBarrierParams changed: pin the new field in area_barrier_defaults");
+static_assert(sizeof(engine::IncisionParams) == 128,
+              "IncisionParams changed: pin the new field in incision_defaults");
+static_assert(sizeof(engine::PatchPlanParams) == 64,
+              "PatchPlanParams changed: pin the new field in patch_plan_defaults");
+static_assert(sizeof(engine::ResectionParams) == 16,
+              "ResectionParams changed: pin the new field in resection_defaults");
 #endif
 
 void check_version(int version) {
@@ -132,6 +138,46 @@ engine::AreaBarrierParams area_barrier_defaults(int version) {
   engine::AreaBarrierParams p;
   p.activation = 0.25;
   p.factor = 1.0;
+  return p;
+}
+
+// Surgery ops: each version's values; the versions differ where the table in
+// docs/session-format.md says so.
+engine::IncisionParams incision_defaults(int version) {
+  check_version(version);
+  engine::IncisionParams p;
+  p.mode = engine::IncisionMode::CutThroughFaces;
+  p.max_distance = 1.0;
+  p.end_snap = 0.25;
+  p.remesh = version >= 2;  // version 1 sessions keep the raw trace
+  p.target_edge_length = 0.0;
+  p.band_width = 2.0;
+  p.grading = 1.0;
+  p.repair_below_deg = version >= 4 ? 20.0 : 0.0;
+  p.constrained_vertices.clear();
+  p.constrained_edges.clear();
+  return p;
+}
+
+engine::PatchPlanParams patch_plan_defaults(int version) {
+  check_version(version);
+  engine::PatchPlanParams p;
+  p.shape = engine::PatchShape::Ellipse;
+  p.width = 4.0;
+  p.length = 0.0;
+  p.edge_length = 0.0;
+  p.min_edge_length = 0.0;
+  p.max_distance = 1.0;
+  p.left_segments = p.right_segments = 0;
+  p.max_faces = 2.0e7;
+  return p;
+}
+
+engine::ResectionParams resection_defaults(int version) {
+  check_version(version);
+  engine::ResectionParams p;
+  p.radius = 10.0;
+  p.sliver_fraction = 0.15;
   return p;
 }
 

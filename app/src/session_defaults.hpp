@@ -1,6 +1,6 @@
 #pragma once
-// What a session's solver ops mean where a field is left out: the engine settings of each
-// session format version, every field written out (session_defaults.cpp).
+// What a session's solver and surgery ops mean where a field is left out: the engine settings
+// of each session format version, every field written out (session_defaults.cpp).
 //
 // Why: the parsers used to start from the engine structs' own member defaults, so a default
 // changed in the engine changed what every recorded session meant (it happened to the
@@ -18,7 +18,10 @@
 #include "sutura/engine/sim/dynamics.hpp"
 #include "sutura/engine/sim/static_solver.hpp"
 #include "sutura/engine/sim/unload.hpp"
+#include "sutura/engine/surgery/incise.hpp"
+#include "sutura/engine/surgery/patch_plan.hpp"
 #include "sutura/engine/surgery/relaxation.hpp"
+#include "sutura/engine/surgery/resect.hpp"
 
 namespace sutura::app::detail {
 
@@ -36,5 +39,14 @@ engine::UnloadParams unload_defaults(int version);
 engine::ContactParams contact_defaults(int version);
 /// The collapse barrier of `"collapse_barrier": true`. Throws as above.
 engine::AreaBarrierParams area_barrier_defaults(int version);
+/// `incise`: every field but the constrained vertices and edges (which the replay gives).
+/// Throws as above.
+engine::IncisionParams incision_defaults(int version);
+/// `patch` (and `design_patch`'s patch): every field but the seam resampling counts (which
+/// the replay gives); min_edge_length, a fifth of the width since version 2, is set by the
+/// parser from the width it reads. Throws as above.
+engine::PatchPlanParams patch_plan_defaults(int version);
+/// `resect`. Throws as above.
+engine::ResectionParams resection_defaults(int version);
 
 }  // namespace sutura::app::detail

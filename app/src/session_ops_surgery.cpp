@@ -1,5 +1,6 @@
 // Parsers of the surgery ops: incise, join, patch, resect, measure, undo, redo.
 #include "session_ops.hpp"
+#include "session_defaults.hpp"
 #include "sutura/engine/errors.hpp"
 
 namespace sutura::app::detail {
@@ -52,21 +53,20 @@ InciseOp parse_incise(Fields& f) {
   op.object = object_name(f);
   op.points = points(f, "points");
   if (op.points.size() < 2) f.fail("points", "an incision needs at least 2 points");
+  op.params = detail::incision_defaults(f.format_version());
   op.params.mode = engine::parse_incision_mode(f.optional_choice("mode", "cut", {"cut", "snap"}));
   // The former sliver guard: still read and checked, so sessions that set it load, but the
   // cut's vertices now lie on the curve (docs/session-format.md).
   if (f.optional_positive("sliver_fraction", 0.2) >= 0.5) f.fail("sliver_fraction", "must be below 0.5");
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
-  // Version 1 sessions were recorded before the band remesh existed: they keep the raw trace.
-  op.params.remesh = f.optional_bool("remesh", f.format_version() >= 2);
+  op.params.remesh = f.optional_bool("remesh", op.params.remesh);
   op.params.target_edge_length =  // absent: the host's spacing (0)
       f.has("target_edge_length") ? f.optional_positive("target_edge_length", 1.0) : 0.0;
   op.params.band_width = f.optional_positive("band_width", op.params.band_width);
   if (op.params.band_width > 20.0) f.fail("band_width", "must be at most 20 edge lengths");
   op.params.grading = f.optional_number("grading", op.params.grading);
   if (!(op.params.grading >= 1.0 && op.params.grading <= 10.0)) f.fail("grading", "must be in [1, 10]");
-  // Since version 4 a band left with a smaller angle is remeshed again, finer at the cut.
-  op.params.repair_below_deg = f.optional_number("repair_below_angle", f.format_version() >= 4 ? 20.0 : 0.0);
+  op.params.repair_below_deg = f.optional_number("repair_below_angle", op.params.repair_below_deg);
   if (!(op.params.repair_below_deg >= 0.0 && op.params.repair_below_deg <= 40.0))
     f.fail("repair_below_angle", "must be in [0, 40] degrees");
   if (op.params.mode == engine::IncisionMode::SnapToEdges && f.has("remesh") && op.params.remesh)
@@ -116,6 +116,7 @@ engine::ShellMaterial default_patch_material() {
 void parse_patch_fields(Fields& f, PatchOp& op) {
   op.start = vec(f.required_vec3("start"));
   op.end = vec(f.required_vec3("end"));
+  op.params = detail::patch_plan_defaults(f.format_version());
   op.params.shape = engine::parse_patch_shape(
       f.optional_choice("shape", "ellipse", {"ellipse", "diamond", "triangle"}));
   op.params.width = f.optional_positive("width", op.params.width);
@@ -161,6 +162,7 @@ ResectOp parse_resect(Fields& f) {
   if (auto s = f.optional_vec3("seed")) op.seed = vec(*s);
   if (op.planes.size() == 1 && !op.seed)
     f.fail("seed", "missing: with one plane, a point in the part to remove is required");
+  op.params = detail::resection_defaults(f.format_version());
   op.params.radius = f.optional_positive("radius", op.params.radius);
   op.params.sliver_fraction = f.optional_positive("sliver_fraction", op.params.sliver_fraction);
   if (op.params.sliver_fraction >= 0.5) f.fail("sliver_fraction", "must be below 0.5");

@@ -1,6 +1,6 @@
-// What a solver op means where a session line leaves a field out is pinned per format version
-// (app/src/session_defaults.hpp), not taken from the engine's member defaults: these are the
-// values every recorded session of versions 1 to 3 was replayed with. A change here changes
+// What a solver or surgery op means where a session line leaves a field out is pinned per
+// format version (app/src/session_defaults.hpp), not taken from the engine's member defaults:
+// these are the values every recorded session of versions 1 to 4 was replayed with. A change here changes
 // what recorded sessions mean (tests/golden/position_hashes.txt shows it on the bundled ones).
 #include <gtest/gtest.h>
 
@@ -119,5 +119,40 @@ TEST(SessionDefaults, GivenFieldsOverrideAndTheRestKeepTheVersionsValues) {
     const auto& unload = std::get<app::UnloadOp>(s.actions.at(3).op);
     EXPECT_EQ(unload.params.max_iterations, unload_defaults(v).max_iterations);
     EXPECT_EQ(unload.params.acceleration_depth, unload_defaults(v).acceleration_depth);
+  }
+}
+
+// The surgery ops' settings are pinned too; the versions differ where docs/session-format.md's
+// table says so (the band remesh since 2, its second, finer remesh since 4).
+TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
+  for (int v = 1; v <= app::kSessionFormatVersion; ++v) {
+    SCOPED_TRACE(v);
+    const engine::IncisionParams i = incision_defaults(v);
+    EXPECT_EQ(i.mode, engine::IncisionMode::CutThroughFaces);
+    EXPECT_EQ(i.max_distance, 1.0);
+    EXPECT_EQ(i.end_snap, 0.25);
+    EXPECT_EQ(i.remesh, v >= 2);
+    EXPECT_EQ(i.target_edge_length, 0.0);
+    EXPECT_EQ(i.band_width, 2.0);
+    EXPECT_EQ(i.grading, 1.0);
+    EXPECT_EQ(i.repair_below_deg, v >= 4 ? 20.0 : 0.0);
+    const engine::PatchPlanParams p = patch_plan_defaults(v);
+    EXPECT_EQ(p.shape, engine::PatchShape::Ellipse);
+    EXPECT_EQ(p.width, 4.0);
+    EXPECT_EQ(p.max_distance, 1.0);
+    EXPECT_EQ(p.max_faces, 2.0e7);
+    EXPECT_EQ(resection_defaults(v).radius, 10.0);
+    EXPECT_EQ(resection_defaults(v).sliver_fraction, 0.15);
+  }
+  EXPECT_THROW(incision_defaults(app::kSessionFormatVersion + 1), std::invalid_argument);
+  // Parsed: a line that gives nothing gets its file's version's values.
+  for (int v : {3, 4}) {
+    const app::Session s = parse_at(v, "{\"op\": \"incise\", \"object\": \"a\", \"points\": [[0, 0, 0], [1, 0, 0]]}\n"
+                                       "{\"op\": \"resect\", \"object\": \"a\", \"planes\": [{\"origin\": [0, 0, 0], "
+                                       "\"normal\": [0, 0, 1]}], \"seed\": [0, 0, 1]}\n");
+    const auto& incise = std::get<app::InciseOp>(s.actions.at(0).op);
+    EXPECT_EQ(incise.params.repair_below_deg, incision_defaults(v).repair_below_deg);
+    EXPECT_EQ(incise.params.band_width, 2.0);
+    EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).params.radius, 10.0);
   }
 }
