@@ -181,6 +181,9 @@ std::string describe_action(const json& j) {
             ? "a smallest lumen area of " + number(t["min_area_mm2"].get<double>()) + " mm2"
         : t.contains("coarctation_index") && t["coarctation_index"].is_number()
             ? "a coarctation index of " + number(t["coarctation_index"].get<double>())
+        : t.contains("z_score") && t["z_score"].is_number()
+            ? "a z-score of " + number(t["z_score"].get<double>()) + " at the " +
+                  (t.contains("site") && t["site"].is_string() ? t["site"].get<std::string>() : std::string("isthmus"))
             : "a target";
     return "Design a patch for " + object + ": the width that gives " + target;
   }

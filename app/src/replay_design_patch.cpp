@@ -202,6 +202,12 @@ json Run::execute(const DesignPatchOp& op) {
             {"relaxations", candidates.size()},
             {"candidates", list},
             {"measurement", op.measure.name}};
+  if (op.z_score)
+    j["target"]["z_score"] = {{"z", op.z_score->z},
+                              {"site", engine::arch_site_name(op.z_score->site)},
+                              {"bsa_m2", op.z_score->bsa_m2},
+                              {"diameter_mm", op.z_score->diameter_mm},
+                              {"regression", "Pettersen et al., J Am Soc Echocardiogr 2008;21:922-934"}};
   if (op.max_bulge) j["max_bulge"] = *op.max_bulge;
   if (!op.plot.empty()) j["plot"] = op.plot.generic_string();
   j["summary"] = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +

@@ -1,4 +1,6 @@
 // Parsers of the surgery ops: incise, join, patch, resect, measure, undo, redo.
+#include <cmath>
+
 #include "session_ops.hpp"
 #include "session_defaults.hpp"
 #include "sutura/engine/errors.hpp"
@@ -237,12 +239,28 @@ DesignPatchOp parse_design_patch(Fields& f) {
   op.width_max = (*range)[1];
   if (op.width_min < 0.5) f.fail("width_range", "must start at 0.5 mm or more (a suture bite)");
   if (op.width_max > 50.0) f.fail("width_range", "must end at 50 mm or less");
-  Fields target = part("target", "{min_area_mm2: ...} or {coarctation_index: ...}");
-  if (target.has("min_area_mm2") == target.has("coarctation_index"))
-    target.fail("min_area_mm2", "give one of min_area_mm2 and coarctation_index");
+  Fields target = part("target", "{min_area_mm2: ...}, {coarctation_index: ...} or {z_score: ..., site: ..., bsa_m2: ...}");
+  if (int(target.has("min_area_mm2")) + int(target.has("coarctation_index")) + int(target.has("z_score")) != 1)
+    target.fail("min_area_mm2", "give one of min_area_mm2, coarctation_index and z_score");
   if (target.has("min_area_mm2")) {
     op.target = DesignPatchOp::Target::MinArea;
     op.target_value = target.optional_positive("min_area_mm2", 1.0);
+  } else if (target.has("z_score")) {
+    // The smallest equivalent diameter must reach the z-score's: a MinArea target.
+    DesignPatchOp::ZScore z;
+    z.z = target.optional_number("z_score", 0.0);
+    if (!(z.z >= -5.0 && z.z <= 5.0)) target.fail("z_score", "must be in [-5, 5]");
+    z.site = engine::parse_arch_site(
+        target.optional_choice("site", "isthmus", {"transverse_arch", "isthmus", "descending_aorta"}));
+    if (!target.has("bsa_m2")) target.fail("bsa_m2", "missing: the child's body surface area, m^2");
+    z.bsa_m2 = target.optional_number("bsa_m2", 0.0);
+    static_assert(engine::kMinBsa == 0.1 && engine::kMaxBsa == 2.0, "the message below names the range");
+    if (!(z.bsa_m2 >= engine::kMinBsa && z.bsa_m2 <= engine::kMaxBsa))
+      target.fail("bsa_m2", "must be in [0.1, 2] m^2 (the regressions' range)");
+    z.diameter_mm = engine::arch_diameter_at_z(z.site, z.bsa_m2, z.z);
+    op.target = DesignPatchOp::Target::MinArea;
+    op.target_value = 0.25 * M_PI * z.diameter_mm * z.diameter_mm;
+    op.z_score = z;
   } else {
     op.target = DesignPatchOp::Target::CoarctationIndex;
     op.target_value = target.optional_positive("coarctation_index", 1.0);

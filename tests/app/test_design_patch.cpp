@@ -1,5 +1,6 @@
 // design_patch: a patch's width chosen so that the repaired lumen meets a target, on the
 // bundled coarse arch (the default session's plan: 80 mmHg, incision across the coarctation).
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -246,6 +247,29 @@ TEST(DesignPatch, BadRequestsNameTheField) {
   no_target["simulate"] = without(plan().simulate, {"op"});
   no_target.erase("target");
   EXPECT_NE(failure(header + no_target.dump() + "\n").find("target"), std::string::npos);
+  // The z-score target: its site, BSA and z are checked, and it is one target among three.
+  EXPECT_NE(failure(op({{"z_score", -2}}, {2, 4})).find("target.bsa_m2"), std::string::npos);
+  EXPECT_NE(failure(op({{"z_score", -2}, {"bsa_m2", 3}}, {2, 4})).find("target.bsa_m2"), std::string::npos);
+  EXPECT_NE(failure(op({{"z_score", -9}, {"bsa_m2", 0.2}}, {2, 4})).find("target.z_score"), std::string::npos);
+  EXPECT_NE(failure(op({{"z_score", -2}, {"bsa_m2", 0.2}, {"site", "root"}}, {2, 4})).find("target.site"),
+            std::string::npos);
+  EXPECT_NE(failure(op({{"z_score", -2}, {"bsa_m2", 0.2}, {"min_area_mm2", 20}}, {2, 4})).find("target.min_area_mm2"),
+            std::string::npos);
+}
+
+// A z-score target is the area of a circle of the z-score's diameter (Pettersen's isthmus at
+// BSA 0.2 m^2, z = -2: engine::arch_diameter_at_z), a smallest-area target.
+TEST(DesignPatch, AZScoreTargetIsTheAreaOfItsDiameter) {
+  const std::string text = design({{"z_score", -2}, {"site", "isthmus"}, {"bsa_m2", 0.2}}, {2, 6});
+  const Session s = parse_session(text, "/tmp/z.jsonl");  // the default session's header and steps
+  const auto& d = std::get<DesignPatchOp>(s.actions.back().op);
+  ASSERT_TRUE(d.z_score.has_value());
+  const double D = sutura::engine::arch_diameter_at_z(sutura::engine::ArchSite::Isthmus, 0.2, -2.0);
+  EXPECT_DOUBLE_EQ(d.z_score->diameter_mm, D);
+  EXPECT_EQ(d.target, DesignPatchOp::Target::MinArea);
+  EXPECT_DOUBLE_EQ(d.target_value, 0.25 * M_PI * D * D);
+  EXPECT_GT(D, 3.0);  // a neonate's isthmus two standard deviations below the mean: a few mm
+  EXPECT_LT(D, 6.0);
 }
 
 }  // namespace

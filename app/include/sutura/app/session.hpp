@@ -25,6 +25,7 @@
 #include "sutura/engine/sim/static_solver.hpp"
 #include "sutura/engine/sim/unload.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
+#include "sutura/engine/measure/z_score.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
 #include "sutura/engine/surgery/incise.hpp"
@@ -422,6 +423,15 @@ struct DesignPatchOp {
   };
   Target target = Target::MinArea;
   double target_value = 0.0;
+  /// A MinArea target given as a z-score of the site's diameter for the child's body surface
+  /// area (engine::arch_diameter_at_z): target_value is the area of a circle of that diameter.
+  struct ZScore {
+    engine::ArchSite site = engine::ArchSite::Isthmus;
+    double bsa_m2 = 0.0;
+    double z = 0.0;
+    double diameter_mm = 0.0;
+  };
+  std::optional<ZScore> z_score;
   double tolerance = 0.05;  ///< a width is chosen when the quantity is in [T, T (1 + tolerance)]
   /// Limit: the largest equivalent diameter along the centreline / the distal end's.
   std::optional<double> max_bulge;
