@@ -61,6 +61,10 @@ TEST(SessionRecorder, ContinueInCopiesTheSessionAndNeverWritesIt) {
   const fs::path f = temp_file("continued");
   auto r = SessionRecorder::continue_in(from, f);
   EXPECT_EQ(r.lines(), 2);  // the missing final newline was added
+  // New lines mean what they mean in the continued session's version (its header stays).
+  EXPECT_EQ(r.format_version(), 1);
+  EXPECT_EQ(SessionRecorder::create(temp_file("fresh"), "t").format_version(), sutura::app::kSessionFormatVersion);
+  fs::remove(temp_file("fresh"));
   EXPECT_EQ(r.append({{"op", "y"}}), 3);
   EXPECT_EQ(read(f), "{\"format\": \"sutura-session\", \"version\": 1}\n{\"op\": \"x\"}\n{\"op\":\"y\"}\n");
   EXPECT_EQ(read(from), opened);
@@ -74,6 +78,11 @@ TEST(SessionRecorder, ContinueInCopiesTheSessionAndNeverWritesIt) {
   EXPECT_EQ(read(from), opened);
   EXPECT_THROW(SessionRecorder::continue_in(temp_file("missing"), temp_file("never")), std::runtime_error);
   EXPECT_FALSE(fs::exists(temp_file("never")));
+  const fs::path newer = temp_file("newer");
+  { std::ofstream(newer) << "\n{\"format\": \"sutura-session\", \"version\": 99}\n"; }
+  EXPECT_THROW(SessionRecorder::continue_in(newer, temp_file("never")), std::runtime_error);
+  EXPECT_FALSE(fs::exists(temp_file("never")));
+  fs::remove(newer);
   fs::remove(from);
   fs::remove(f);
   fs::remove(copy);

@@ -48,7 +48,7 @@ std::optional<app::Action> SessionController::record(const json& op, ActionOutco
   outcome.op = op.value("op", std::string("?"));
   const int line = recorder_.lines() + 1;
   try {
-    app::Action action = app::parse_action(op, recorder_.file(), line);
+    app::Action action = app::parse_action(op, recorder_.file(), line, recorder_.format_version());
     if (recorder_.append(op) != line) throw std::logic_error("session line numbering mismatch");
     return action;
   } catch (const std::exception& e) {

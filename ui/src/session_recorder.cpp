@@ -36,6 +36,7 @@ SessionRecorder::SessionRecorder(SessionRecorder&& other) noexcept
       opened_(std::move(other.opened_)),
       out_(other.out_),
       lines_(other.lines_),
+      version_(other.version_),
       line_starts_(std::move(other.line_starts_)) {
   other.out_ = nullptr;
 }
@@ -100,6 +101,7 @@ std::FILE* create_exclusively(const fs::path& file) {
 
 SessionRecorder SessionRecorder::create(const fs::path& file, const std::string& description) {
   SessionRecorder r(file, create_exclusively(file), 0);
+  r.version_ = app::kSessionFormatVersion;
   const nlohmann::json header = {{"format", "sutura-session"},
                                  {"version", app::kSessionFormatVersion},
                                  {"units", "mm"},
@@ -116,10 +118,25 @@ SessionRecorder SessionRecorder::continue_in(const fs::path& from, const fs::pat
   if (in.bad()) fail(from, "cannot be read");
   if (!content.empty() && content.back() != '\n') content += '\n';
   content = rebased(content, from, file);
+  // The header's version (the first line that is not blank, as the session parser reads it).
+  int version = 0;
+  {
+    std::istringstream text(content);
+    std::string first;
+    while (std::getline(text, first) && first.find_first_not_of(" \t\r") == std::string::npos) {
+    }
+    const nlohmann::json header = nlohmann::json::parse(first, nullptr, false);
+    if (header.is_object() && header.contains("version") && header["version"].is_number_integer())
+      version = header["version"].get<int>();
+    if (version < 1 || version > app::kSessionFormatVersion)
+      fail(from, "has no session header this build reads (format version 1 to " +
+                     std::to_string(app::kSessionFormatVersion) + ")");
+  }
   const auto lines = static_cast<int>(std::count(content.begin(), content.end(), '\n'));
   std::FILE* out = create_exclusively(file);
   SessionRecorder r(file, out, lines);  // closes `out` should the copy fail
   r.opened_ = from;
+  r.version_ = version;
   if (std::fwrite(content.data(), 1, content.size(), out) != content.size() || std::fflush(out) != 0) {
     std::error_code ignored;
     fs::remove(file, ignored);  // our own new file, half written

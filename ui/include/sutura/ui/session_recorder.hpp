@@ -47,6 +47,10 @@ class SessionRecorder {
 
   [[nodiscard]] const std::filesystem::path& file() const { return file_; }
   [[nodiscard]] int lines() const { return lines_; }  ///< lines in the file, header included
+  /// The format version of the file's header: app::kSessionFormatVersion for a new recording,
+  /// the continued session's own for continue_in (its new lines mean what they would mean in
+  /// that version, so the file replays as the window ran it).
+  [[nodiscard]] int format_version() const { return version_; }
 
  private:
   SessionRecorder(std::filesystem::path file, std::FILE* out, int lines);
@@ -55,6 +59,7 @@ class SessionRecorder {
   std::filesystem::path opened_;  ///< the session continued here (continue_in); empty: none
   std::FILE* out_ = nullptr;
   int lines_ = 0;
+  int version_ = 0;
   std::vector<long> line_starts_;  ///< byte offsets of the lines appended by this recorder
 };
 
