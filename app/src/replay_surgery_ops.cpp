@@ -254,6 +254,7 @@ json Run::execute(const InciseOp& op) {
             {"starts_on_boundary", r.starts_on_boundary},
             {"ends_on_boundary", r.ends_on_boundary}};
   if (r.remeshed) j["remesh"] = {{"before", mesh_quality_json(r.band_before)}, {"after", mesh_quality_json(r.band_after)}};
+  if (r.band_repair_fraction > 0.0) j["remesh"]["repaired_at"] = r.band_repair_fraction;
   j["mesh"] = mesh_counts(obj);
   return j;
 }

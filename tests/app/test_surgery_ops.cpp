@@ -424,6 +424,8 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherAThinBandIsRemeshedAgain) {
   };
   EXPECT_LT(band(kHeader3, incise, "thin_v3"), 20.0);
   EXPECT_GE(band("{\"format\": \"sutura-session\", \"version\": 4}\n", incise, "thin_v4"), 20.0);
+  EXPECT_TRUE(action(run("{\"format\": \"sutura-session\", \"version\": 4}\n" + kTube + incise, "thin_v4b"), "incise")
+                  ["remesh"].contains("repaired_at"));
   std::string off = incise;
   off.insert(off.size() - 2, ", \"repair_below_angle\": 0");
   EXPECT_LT(band("{\"format\": \"sutura-session\", \"version\": 4}\n", off, "thin_v4_off"), 20.0);

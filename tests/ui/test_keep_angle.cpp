@@ -101,6 +101,7 @@ TEST(KeepAngle, AFailedSettleIsTriedOnceMoreWithAWiderRegion) {
   run.ok = true;
   ASSERT_TRUE(ui::start_keep_angle(s, run));
   EXPECT_EQ(s.keep_angle_radius, first);
+  EXPECT_FALSE(s.keep_angle_widened);
   auto done = f.wait();
   ASSERT_TRUE(done && done->ok) << (done ? done->message : "timeout");
 
@@ -110,6 +111,7 @@ TEST(KeepAngle, AFailedSettleIsTriedOnceMoreWithAWiderRegion) {
   ASSERT_TRUE(ui::retry_keep_angle_wider(s, failed));
   EXPECT_TRUE(s.keeping_angle);
   EXPECT_DOUBLE_EQ(s.keep_angle_radius, ui::kWiderKeepAngleRadius * first);
+  EXPECT_TRUE(s.keep_angle_widened);
   ASSERT_EQ(s.queued_runs.size(), 1u);
   EXPECT_EQ(s.queued_runs.front()["op"], "solve");
   EXPECT_NE(s.messages.back().text.find("failed at its solve (no convergence (test))"), std::string::npos)
@@ -122,7 +124,7 @@ TEST(KeepAngle, AFailedSettleIsTriedOnceMoreWithAWiderRegion) {
   ASSERT_EQ(plan.applied, applied + 1);
   const nlohmann::json& remesh = plan.steps[plan.applied - 1].source;
   EXPECT_EQ(remesh["op"], "remesh");
-  EXPECT_DOUBLE_EQ(remesh["radius"].get<double>(), ui::kWiderKeepAngleRadius * first);
+  EXPECT_EQ(remesh["radius"].get<double>(), 0.9);  // 1.5 x 0.6, rounded as typed
   EXPECT_NE(hash(f.controller->workspace()), before);
 
   // The second attempt's settle fails too: taken back for good, no third attempt.

@@ -65,7 +65,8 @@ int framebuffer_x(float x, int width, int fb_width) {
 }
 
 // Worker results change the stage: finished -> Inspect, failed or cancelled -> Plan. (A
-// failed or cancelled keep-angle run is taken back and ends in Inspect: keep_angle.hpp.)
+// failed keep-angle run is taken back and tried once more, wider; a cancelled one, or a second
+// failure, is taken back and ends in Inspect: keep_angle.hpp.)
 void finish_worker(GuiState& s) {
   const auto outcome = s.controller.poll();
   if (!outcome) return;

@@ -165,8 +165,10 @@ struct GuiState {
   std::size_t keep_angle_plan_applied = 0;
   std::vector<std::string> keep_angle_objects;  ///< the objects the step remeshes and settles
   /// The radius (mm) of the remesh of the running attempt: the Remesh tool's, or
-  /// kWiderKeepAngleRadius times it when the first attempt's settle failed (keep_angle.hpp).
+  /// kWiderKeepAngleRadius times it in the second attempt (keep_angle_widened), after a run of
+  /// the first failed (keep_angle.hpp).
   double keep_angle_radius = 0.0;
+  bool keep_angle_widened = false;
   /// The running op: when it started, and its number among the runs the last Run simulation
   /// started (progress_text).
   std::chrono::steady_clock::time_point run_started;

@@ -1,6 +1,7 @@
 #include "keep_angle.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <vector>
@@ -69,6 +70,7 @@ bool start_attempt(GuiState& s, const std::string& context, double radius, const
   s.keep_angle_plan_applied = applied;
   s.keep_angle_objects = objects;
   s.keep_angle_radius = radius;
+  s.keep_angle_widened = radius != first_radius(s);
   if (!warning_first.empty()) s.error("warning: " + warning_first);
   s.info(text);
   return true;
@@ -108,10 +110,12 @@ bool start_keep_angle(GuiState& s, const ActionOutcome& run) {
 
 bool retry_keep_angle_wider(GuiState& s, const ActionOutcome& failed) {
   const std::string what = "its " + failed.op + " failed (" + failed.message + ")";
-  const double first = first_radius(s), wider = kWiderKeepAngleRadius * first;
+  const double first = first_radius(s);
+  // Rounded to a micrometre, as typed: 1.5 x 0.6 records 0.9, not 0.8999999999999999.
+  const double wider = std::round(kWiderKeepAngleRadius * first * 1e6) / 1e6;
   s.queued_runs.clear();
   s.keeping_angle = false;
-  if (s.keep_angle_radius > first) {  // the second attempt failed too
+  if (s.keep_angle_widened || s.controller.cancel_requested()) {  // the second attempt failed too
     say_taken_back(s, what, undo_steps(s));
     return false;
   }

@@ -1,10 +1,11 @@
 #pragma once
 // The window's keep-angle step (SimulationSettings::keep_angle): after the runs that Run
 // simulation started, remesh where the shape shown has an angle below the Remesh tool's limit
-// and settle again (app::keep_angle_plan), as more runs. When the settle fails, the step is
-// taken back (undone, recorded as undo steps) and tried once more with a remesh of a wider
-// region (kWiderKeepAngleRadius times the radius); when that fails too, or a run of the step is
-// cancelled, it is taken back for good, so the user's run keeps its result.
+// and settle again (app::keep_angle_plan), as more runs. When one of its runs fails (the
+// remesh or the settle), the step is taken back (undone, recorded as undo steps) and tried
+// once more with a remesh of a wider region (kWiderKeepAngleRadius times the radius); when
+// that fails too, or a run of the step is cancelled, it is taken back for good, so the user's
+// run keeps its result.
 #include <optional>
 #include <string>
 
@@ -12,11 +13,9 @@
 
 namespace sutura::ui {
 
-/// The second attempt's radius over the first's. Why a second attempt: the settle of a
-/// remeshed region that cuts across a steep strain gradient can fail where a slightly wider
-/// one succeeds (the window's subclavian flap under 80 mmHg, 2026-12-07: its minimisation did
-/// not converge after a remesh within 0.6 mm, and converged within 0.9 and 1.2 mm;
-/// docs/remeshing.md).
+/// The second attempt's radius over the first's: the settle of a remeshed region that ends
+/// across a steep strain gradient can fail where a slightly wider one converges
+/// (docs/remeshing.md, the window's flap).
 inline constexpr double kWiderKeepAngleRadius = 1.5;
 
 /// Starts the keep-angle runs after `run`, the last of the runs Run simulation started, if the
@@ -27,8 +26,9 @@ inline constexpr double kWiderKeepAngleRadius = 1.5;
 bool start_keep_angle(GuiState& s, const ActionOutcome& run);
 
 /// After `failed`, a run of the step that failed (not cancelled): takes the step back and, if
-/// this was the first attempt, starts the second, with the wider region (true); otherwise, or
-/// if the second cannot start, the step stays taken back (take_back_keep_angle; false).
+/// this was the first attempt and no cancel is pending, starts the second, with the wider
+/// region (true); otherwise, or if the second cannot start, the step stays taken back, as
+/// take_back_keep_angle says (false).
 bool retry_keep_angle_wider(GuiState& s, const ActionOutcome& failed);
 
 /// Undoes the keep-angle steps done so far (s.keeping_angle), after `what` happened to one of

@@ -235,11 +235,18 @@ int degenerate_face(const detail::TriangleSoup& soup, std::size_t original_faces
   return -1;
 }
 
-// Remeshes `refined` with `rp` (the cut `c` among its constrained edges) and updates `refined`,
-// `maps` (from the mesh passed to incise) and `c` to the result; returns the remesh's result
-// without its mesh.
-RemeshResult remesh_keeping_cut(const RemeshParams& rp, SurfaceMesh& refined, EditMaps& maps,
-                                std::vector<VertexId>& c) {
+// `refined` (an edit of the mesh passed to incise by `maps`, the cut `c` among its constrained
+// edges) remeshed with `rp`: the new mesh, maps from the mesh passed to incise, the cut on it,
+// and the remesh's result (its mesh moved out).
+struct CutRemesh {
+  SurfaceMesh mesh;
+  EditMaps maps;
+  std::vector<VertexId> cut;
+  RemeshResult result;
+};
+
+CutRemesh remesh_keeping_cut(const RemeshParams& rp, const SurfaceMesh& refined, const EditMaps& maps,
+                             const std::vector<VertexId>& c) {
   RemeshResult r = remesh(refined, rp);
   // The cut again, as the chain of constrained edges from the (kept) first vertex to the last.
   std::vector<VertexId> image(refined.num_vertices());
@@ -265,17 +272,18 @@ RemeshResult remesh_keeping_cut(const RemeshParams& rp, SurfaceMesh& refined, Ed
       throw Error("incise: internal error: the remeshed cut is not one polyline");
     chain.push_back(next);
   }
-  maps = compose(maps, r.maps);
-  refined = std::move(r.mesh);
-  r.mesh = SurfaceMesh();
-  c = std::move(chain);
-  return r;
+  CutRemesh out;
+  out.maps = compose(maps, r.maps);
+  out.mesh = std::move(r.mesh);
+  out.cut = std::move(chain);
+  out.result = std::move(r);
+  return out;
 }
 
 // Remeshes the band around the traced cut `c` of `refined` (an edit of `mesh` by `maps`), the
 // cut kept as a constrained polyline; updates all three to the remeshed mesh. Where the band
-// still has an angle below params.repair_below_deg, the band's faces near it are remeshed
-// once more at their own mean edge length.
+// keeps an angle below params.repair_below_deg, the band is remeshed again from the raw cut,
+// finer at the cut (kRepairTargets), and the best of the attempts is kept.
 void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
                  const IncisionParams& params, SurfaceMesh& refined, EditMaps& maps,
                  std::vector<VertexId>& c, IncisionResult& result) {
@@ -300,35 +308,32 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
   // would be that edge, and the slit would close).
   rp.constrained_vertices[c[c.size() / 2].index()] = true;
-  const SurfaceMesh raw = refined;
-  const EditMaps raw_maps = maps;
-  const std::vector<VertexId> raw_cut = c;
-  const RemeshResult band = remesh_keeping_cut(rp, refined, maps, c);
+  CutRemesh best = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
-  result.band_before = band.before;
-  result.band_after = band.after;
-  if (!(band.after.min_angle_deg < params.repair_below_deg)) return;
-
-  // Again from the raw cut, finer at the cut and graded out to the host's spacing: the finest
-  // of kRepairTargets that lifts the band above the limit, else the best of them.
-  double best = band.after.min_angle_deg;
+  result.band_before = best.result.before;
+  // Again from the raw cut (`refined` is still the traced cut), graded out to the host's
+  // spacing: the first of kRepairTargets that lifts the band to the limit, else the best. An
+  // attempt that fails leaves the first remesh as it was.
   for (const double fraction : kRepairTargets) {
-    SurfaceMesh m = raw;
-    EditMaps mm = raw_maps;
-    std::vector<VertexId> cc = raw_cut;
+    if (!(best.result.after.min_angle_deg < params.repair_below_deg)) break;
     RemeshParams finer = rp;
     finer.target_edge_length = fraction * L;
     finer.grading = std::max(params.grading, 1.5);
     finer.grading_curve = trace;
-    const RemeshResult second = remesh_keeping_cut(finer, m, mm, cc);
-    if (!(second.after.min_angle_deg > best)) continue;
-    best = second.after.min_angle_deg;
-    refined = std::move(m);
-    maps = std::move(mm);
-    c = std::move(cc);
-    result.band_after = second.after;
-    if (!(best < params.repair_below_deg)) break;
+    try {
+      CutRemesh attempt = remesh_keeping_cut(finer, refined, maps, c);
+      if (attempt.result.after.min_angle_deg > best.result.after.min_angle_deg) {
+        best = std::move(attempt);
+        result.band_repair_fraction = fraction;
+      }
+    } catch (const InvalidArgument&) {
+    } catch (const Error&) {
+    }
   }
+  refined = std::move(best.mesh);
+  maps = std::move(best.maps);
+  c = std::move(best.cut);
+  result.band_after = best.result.after;
 }
 
 // An end of the curve within `fraction` of its face's mean edge length from the open boundary

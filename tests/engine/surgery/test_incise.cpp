@@ -346,6 +346,8 @@ TEST(Incise, ABandLeftBelowTheLimitIsRemeshedAgainFinerAtTheCut) {
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
   const IncisionResult after = incise(arch, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
+  EXPECT_GT(after.band_repair_fraction, 0.0);
+  EXPECT_EQ(before.band_repair_fraction, 0.0);
   EXPECT_GE(mesh_quality(after.mesh).min_angle_deg, 20.0);  // the whole mesh, not only the band
   EXPECT_TRUE(after.mesh.validate().ok());
   EXPECT_LT(lips_from_trace(arch, points, after), 1e-6);

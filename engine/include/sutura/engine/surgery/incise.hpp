@@ -24,7 +24,7 @@ enum class IncisionMode {
 /// Parses "snap" | "cut"; throws InvalidArgument otherwise.
 IncisionMode parse_incision_mode(const std::string& name);
 
-/// IncisionParams::repair_below_deg's band remeshes, their target edge lengths at the cut as
+/// IncisionParams::repair_below_deg's band remeshes: their target edge lengths at the cut, as
 /// fractions of the band's, tried in this order.
 inline constexpr double kRepairTargets[] = {0.6, 0.45, 0.3};
 
@@ -47,11 +47,13 @@ struct IncisionParams {
   double band_width = 2.0;
   /// >= 1: edge growth per band away from the cut (1 = uniform; see RemeshParams::grading).
   double grading = 1.0;
-  /// Degrees, in [0, 40]: where the remeshed band still has a face with a smaller angle (a
-  /// cut that runs or ends within about half an edge of the open boundary leaves a gap
-  /// narrower than the band's edges), the band's faces within kRepairRadius target edge
-  /// lengths (along the edges) of such a face are remeshed once more, at their own mean edge
-  /// length, the cut kept. 0: off (session format 3 and older).
+  /// Degrees, in [0, 40]: where the remeshed band still has a smaller angle (a cut that runs
+  /// or ends within about half an edge of the open boundary leaves a gap narrower than the
+  /// band's edges), the band is remeshed again from the raw cut with the targets of
+  /// kRepairTargets at the cut, graded by at least 1.5 out to the host's spacing, in that
+  /// order; the first that reaches this limit is kept, else the one with the largest smallest
+  /// angle (IncisionResult::band_repair_fraction says which). Each attempt costs one band
+  /// remesh. 0: off.
   double repair_below_deg = 20.0;
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
@@ -77,6 +79,9 @@ struct IncisionResult {
   double length = 0.0;        ///< mm, along the cut
   bool remeshed = false;      ///< the band around the cut was remeshed
   MeshQuality band_before, band_after;  ///< of the band, when remeshed
+  /// The kRepairTargets fraction whose remesh was kept (IncisionParams::repair_below_deg);
+  /// 0: the first remesh was kept.
+  double band_repair_fraction = 0.0;
 };
 
 /// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the
