@@ -3,6 +3,8 @@
 // recorded, back to the shape the user's run left.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "../../ui/src/keep_angle.hpp"
 #include "controller_fixture.hpp"
 #include "sutura/app/element_check.hpp"
@@ -32,18 +34,28 @@ const json kHoldRoot = {{"op", "constrain"}, {"object", "a"},
 
 std::string hash(const app::Workspace& w) { return app::position_hash(w.objects().front().mesh); }
 
+// The thin strip, its root held, in the window's Simulate stage, as a run leaves it: the
+// strip's hash and the plan's applied steps then.
+struct AfterRun : Fixture {
+  std::string before;
+  std::size_t applied = 0;
+  explicit AfterRun(const std::string& name) : Fixture(name) {
+    if (!controller->run(kThinStrip).ok || !controller->run(kHoldRoot).ok) throw std::runtime_error("setup failed");
+    state->stages.mesh_loaded();
+    state->stages.simulation_started();
+    before = hash(controller->workspace());
+    applied = controller->plan().applied;
+  }
+};
+
 }  // namespace
 
 // take_back_keep_angle as finish_worker calls it when a run of the step fails or is cancelled.
 TEST(KeepAngle, AFailedSettleIsUndoneWholeAndRecorded) {
-  Fixture f("undo");
-  ASSERT_TRUE(f.controller->run(kThinStrip).ok);
-  ASSERT_TRUE(f.controller->run(kHoldRoot).ok);
+  AfterRun f("undo");
   ui::GuiState& s = *f.state;
-  s.stages.mesh_loaded();
-  s.stages.simulation_started();
-  const std::string before = hash(f.controller->workspace());
-  const std::size_t applied = f.controller->plan().applied;
+  const std::string before = f.before;
+  const std::size_t applied = f.applied;
   ASSERT_LT(app::smallest_angles(f.controller->workspace()).front().degrees, 1.0);
 
   ui::ActionOutcome run;  // the user's run, as finish_worker passes it
@@ -86,14 +98,10 @@ TEST(KeepAngle, AFailedSettleIsUndoneWholeAndRecorded) {
 // undone and tried once more within kWiderKeepAngleRadius times the radius; a second failure
 // takes it back for good.
 TEST(KeepAngle, AFailedSettleIsTriedOnceMoreWithAWiderRegion) {
-  Fixture f("retry");
-  ASSERT_TRUE(f.controller->run(kThinStrip).ok);
-  ASSERT_TRUE(f.controller->run(kHoldRoot).ok);
+  AfterRun f("retry");
   ui::GuiState& s = *f.state;
-  s.stages.mesh_loaded();
-  s.stages.simulation_started();
-  const std::string before = hash(f.controller->workspace());
-  const std::size_t applied = f.controller->plan().applied;
+  const std::string before = f.before;
+  const std::size_t applied = f.applied;
   const double first = app::as_typed(s.remesh.small_angle_radius);
 
   ui::ActionOutcome run;
