@@ -210,8 +210,15 @@ json Run::execute(const DesignPatchOp& op) {
                               {"regression", "Pettersen et al., J Am Soc Echocardiogr 2008;21:922-934"}};
   if (op.max_bulge) j["max_bulge"] = *op.max_bulge;
   if (!op.plot.empty()) j["plot"] = op.plot.generic_string();
-  j["summary"] = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +
-                 fixed(value(*chosen), 3) + " (" + reason + ")";
+  std::string summary = status + ": width " + fixed(chosen->width, 2) + " mm, " + quantity + " " +
+                        fixed(value(*chosen), 3) + " (" + reason + ")";
+  if (op.z_score) {
+    summary += "; target: ";
+    summary += engine::arch_site_name(op.z_score->site);
+    summary += " z " + fixed(op.z_score->z, 2) + " at BSA " + fixed(op.z_score->bsa_m2, 2) + " m^2, diameter " +
+               fixed(op.z_score->diameter_mm, 2) + " mm";
+  }
+  j["summary"] = summary;
   // The chosen candidate's patch material and run, as its patch and simulate ops report them.
   if (chosen->patch.contains("material_index")) j["material_index"] = chosen->patch["material_index"];
   for (const char* key : {"s_reached", "residual", "equilibrium"})

@@ -272,4 +272,21 @@ TEST(DesignPatch, AZScoreTargetIsTheAreaOfItsDiameter) {
   EXPECT_LT(D, 6.0);
 }
 
+// Run: the isthmus at z = -1 for BSA 0.2 m^2 (4.54 mm, 16.16 mm^2) is met, and the result
+// says which z-score it met.
+TEST(DesignPatch, MeetsAZScoreTarget) {
+  const ReplayResult r = sutura::testing::replay_text(design({{"z_score", -1}, {"site", "isthmus"}, {"bsa_m2", 0.2}}, {2, 6}),
+                                                      sutura::testing::scratch_dir("design", "zscore"));
+  const json& d = design_action(r);
+  EXPECT_EQ(d["status"], "met") << d.dump();
+  const double D = sutura::engine::arch_diameter_at_z(sutura::engine::ArchSite::Isthmus, 0.2, -1.0);
+  EXPECT_DOUBLE_EQ(d["target"]["z_score"]["diameter_mm"].get<double>(), D);
+  const double area = r.report["measurements"]["lumen"]["after"]["min_area_mm2"].get<double>();
+  EXPECT_GE(area, 0.25 * M_PI * D * D);
+  EXPECT_LE(area, 0.25 * M_PI * D * D * 1.05);
+  EXPECT_NE(d["summary"].get<std::string>().find("target: isthmus z -1.00 at BSA 0.20 m^2, diameter 4.54 mm"),
+            std::string::npos)
+      << d["summary"];
+}
+
 }  // namespace
