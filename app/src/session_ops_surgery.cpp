@@ -63,7 +63,7 @@ InciseOp parse_incise(Fields& f) {
   op.params.max_distance = f.optional_positive("max_distance", op.params.max_distance);
   op.params.remesh = f.optional_bool("remesh", op.params.remesh);
   op.params.target_edge_length =  // absent: the host's spacing (0)
-      f.has("target_edge_length") ? f.optional_positive("target_edge_length", 1.0) : 0.0;
+      f.has("target_edge_length") ? f.optional_positive("target_edge_length", 1.0) : op.params.target_edge_length;
   op.params.band_width = f.optional_positive("band_width", op.params.band_width);
   if (op.params.band_width > 20.0) f.fail("band_width", "must be at most 20 edge lengths");
   op.params.grading = f.optional_number("grading", op.params.grading);

@@ -237,12 +237,12 @@ int degenerate_face(const detail::TriangleSoup& soup, std::size_t original_faces
 
 // `refined` (an edit of the mesh passed to incise by `maps`, the cut `c` among its constrained
 // edges) remeshed with `rp`: the new mesh, maps from the mesh passed to incise, the cut on it,
-// and the remesh's result (its mesh moved out).
+// and the band's quality before and after.
 struct CutRemesh {
   SurfaceMesh mesh;
   EditMaps maps;
   std::vector<VertexId> cut;
-  RemeshResult result;
+  MeshQuality before, after;
 };
 
 CutRemesh remesh_keeping_cut(const RemeshParams& rp, const SurfaceMesh& refined, const EditMaps& maps,
@@ -276,7 +276,8 @@ CutRemesh remesh_keeping_cut(const RemeshParams& rp, const SurfaceMesh& refined,
   out.maps = compose(maps, r.maps);
   out.mesh = std::move(r.mesh);
   out.cut = std::move(chain);
-  out.result = std::move(r);
+  out.before = r.before;
+  out.after = r.after;
   return out;
 }
 
@@ -310,19 +311,19 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   rp.constrained_vertices[c[c.size() / 2].index()] = true;
   CutRemesh best = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
-  result.band_before = best.result.before;
+  result.band_before = best.before;
   // Again from the raw cut (`refined` is still the traced cut), graded out to the host's
   // spacing: the first of kRepairTargets that lifts the band to the limit, else the best. An
   // attempt that fails leaves the first remesh as it was.
   for (const double fraction : kRepairTargets) {
-    if (!(best.result.after.min_angle_deg < params.repair_below_deg)) break;
+    if (!(best.after.min_angle_deg < params.repair_below_deg)) break;
     RemeshParams finer = rp;
     finer.target_edge_length = fraction * L;
     finer.grading = std::max(params.grading, 1.5);
     finer.grading_curve = trace;
     try {
       CutRemesh attempt = remesh_keeping_cut(finer, refined, maps, c);
-      if (attempt.result.after.min_angle_deg > best.result.after.min_angle_deg) {
+      if (attempt.after.min_angle_deg > best.after.min_angle_deg) {
         best = std::move(attempt);
         result.band_repair_fraction = fraction;
       }
@@ -333,7 +334,7 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   refined = std::move(best.mesh);
   maps = std::move(best.maps);
   c = std::move(best.cut);
-  result.band_after = best.result.after;
+  result.band_after = best.after;
 }
 
 // An end of the curve within `fraction` of its face's mean edge length from the open boundary
