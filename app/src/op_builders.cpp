@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "sutura/app/simulation.hpp"
+#include "sutura/engine/measure/z_score.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
 
 namespace sutura::app {
@@ -240,6 +241,18 @@ json lumen_profile_op(const std::string& object, const std::string& name, const 
           {"from", point_json(from)}, {"to", point_json(to)}};
 }
 
+std::vector<std::string> z_score_sites() {
+  std::vector<std::string> names;
+  for (const engine::ArchSite site :
+       {engine::ArchSite::TransverseArch, engine::ArchSite::Isthmus, engine::ArchSite::DescendingAorta})
+    names.emplace_back(engine::arch_site_name(site));
+  return names;
+}
+
+double z_score_diameter_mm(const DesignZScore& target) {
+  return engine::arch_diameter_at_z(engine::parse_arch_site(target.site), target.bsa_m2, target.z);
+}
+
 json design_patch_op(const json& patch, int relax_steps, bool collapse_barrier, const DesignTarget& target) {
   json part = patch;
   const std::string object = part.value("object", std::string());
@@ -263,7 +276,10 @@ json design_patch_op(const json& patch, int relax_steps, bool collapse_barrier, 
           {"simulate", run},
           {"measure", measure},
           {"width_range", {target.width_min, target.width_max}},
-          {"target", {{"min_area_mm2", target.min_area_mm2}}},
+          {"target", target.z_score ? json{{"z_score", target.z_score->z},
+                                           {"site", target.z_score->site},
+                                           {"bsa_m2", target.z_score->bsa_m2}}
+                                     : json{{"min_area_mm2", target.min_area_mm2}}},
           {"tolerance", target.tolerance},
           {"max_bulge", target.max_bulge}};
 }

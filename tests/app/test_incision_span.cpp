@@ -86,4 +86,42 @@ TEST(IncisionSpan, TheDesignOpParses) {
   EXPECT_DOUBLE_EQ(*d.max_bulge, 1.4);
 }
 
+// The window's z-score target parses as the session's {z_score, site, bsa_m2}, to the
+// diameter the window shows (the isthmus at z = -1 for BSA 0.2 m^2: 4.54 mm, docs/anatomy.md).
+TEST(IncisionSpan, TheDesignOpsZScoreTargetParses) {
+  const auto mesh = tube();
+  sutura::app::DesignTarget t;
+  const sutura::app::IncisionSpan span = sutura::app::incision_span(mesh, {4, 0, 25}, {4, 0, 12}, 3.0);
+  t.centreline = span.centreline;
+  t.z_score = sutura::app::DesignZScore{-1.0, "isthmus", 0.2};
+  const nlohmann::json patch = sutura::app::patch_op("t", "ellipse", {4, 0, 25}, {4, 0, 12}, 4.0,
+                                                     {{"youngs_modulus", 3.0}, {"thickness", 0.4}});
+  const nlohmann::json op = sutura::app::design_patch_op(patch, 3, false, t);
+  const sutura::app::Action a = sutura::app::parse_action(op, "s.jsonl", 2);
+  const auto& d = std::get<sutura::app::DesignPatchOp>(a.op);
+  ASSERT_TRUE(d.z_score.has_value());
+  EXPECT_EQ(d.z_score->site, sutura::engine::ArchSite::Isthmus);
+  EXPECT_DOUBLE_EQ(d.z_score->z, -1.0);
+  EXPECT_DOUBLE_EQ(d.z_score->bsa_m2, 0.2);
+  const double diameter = sutura::app::z_score_diameter_mm(*t.z_score);
+  EXPECT_NEAR(diameter, 4.54, 0.005);
+  EXPECT_DOUBLE_EQ(d.z_score->diameter_mm, diameter);
+  EXPECT_DOUBLE_EQ(d.target_value, 0.25 * M_PI * diameter * diameter);
+}
+
+TEST(IncisionSpan, TheWindowsZScoreSitesAreTheSessionsAndBadTargetsAreRefusedInWords) {
+  EXPECT_EQ(sutura::app::z_score_sites(),
+            (std::vector<std::string>{"transverse_arch", "isthmus", "descending_aorta"}));
+  for (const sutura::app::DesignZScore& bad : {sutura::app::DesignZScore{-1.0, "isthmus", 0.05},
+                                             sutura::app::DesignZScore{-6.0, "isthmus", 0.2},
+                                             sutura::app::DesignZScore{-1.0, "arch", 0.2}}) {
+    try {
+      (void)sutura::app::z_score_diameter_mm(bad);
+      ADD_FAILURE() << "no error for " << bad.site << " z " << bad.z << " BSA " << bad.bsa_m2;
+    } catch (const std::runtime_error& e) {
+      EXPECT_GT(std::string(e.what()).size(), 10u);
+    }
+  }
+}
+
 }  // namespace

@@ -66,7 +66,11 @@ struct PatchDraft {
   float youngs_modulus = 2.0f, poisson_ratio = 0.45f, thickness = 0.5f;
   /// Design the width instead (app::DesignTarget), the lumen measured along the incision
   /// between `ends`.
+  bool target_z_score = false;      ///< the target: a diameter z-score, or else target_area
   float target_area = 20.0f;        ///< mm^2
+  float z_score = -1.0f;
+  float bsa_m2 = 0.2f;              ///< the child's body surface area
+  int site = 1;                     ///< index into app::z_score_sites()
   float tolerance_percent = 5.0f;
   float width_min = 2.0f, width_max = 8.0f;  ///< mm
   float max_bulge = 1.4f;

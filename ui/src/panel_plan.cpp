@@ -1,5 +1,6 @@
 // The Plan section: objects, opening meshes, planning tools, material, undo/redo.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -216,7 +217,36 @@ void design_controls(GuiState& s, const std::optional<json>& patch) {
   ImGui::TextWrapped("Tries widths in the range, each sewn in and relaxed under the loads, until the smallest "
                      "lumen area along the incision (its centreline from 3 mm before the first end clicked to 3 mm "
                      "past the second) reaches the target (docs/patch-design.md).");
-  number_field("target area [mm2]", &s.patch.target_area, 1.0f, 2000.0f, 1.0f, "%.1f");
+  if (noted_radio(s.widgets, "smallest lumen area", !s.patch.target_z_score)) s.patch.target_z_score = false;
+  ImGui::SameLine();
+  if (noted_radio(s.widgets, "diameter z-score", s.patch.target_z_score)) s.patch.target_z_score = true;
+  std::optional<app::DesignZScore> z_target;
+  std::optional<std::string> z_refused;
+  if (!s.patch.target_z_score) {
+    number_field("target area [mm2]", &s.patch.target_area, 1.0f, 2000.0f, 1.0f, "%.1f");
+  } else {
+    const std::vector<std::string> sites = app::z_score_sites();
+    s.patch.site = std::clamp(s.patch.site, 0, static_cast<int>(sites.size()) - 1);
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      std::string label = sites[i];
+      std::replace(label.begin(), label.end(), '_', ' ');
+      if (noted_radio(s.widgets, label, s.patch.site == static_cast<int>(i))) s.patch.site = static_cast<int>(i);
+    }
+    number_field("z-score", &s.patch.z_score, -5.0f, 5.0f, 0.5f, "%.2f");
+    s.widgets.note("z-score");
+    number_field("body surface area [m2]", &s.patch.bsa_m2, 0.1f, 2.0f, 0.01f, "%.2f");
+    s.widgets.note("body surface area [m2]");
+    tooltip_for_last_item("The child's body surface area; the regressions (Pettersen et al. 2008, "
+                          "docs/anatomy.md) cover 0.1 to 2 m2.");
+    z_target = app::DesignZScore{app::as_typed(s.patch.z_score), sites[static_cast<std::size_t>(s.patch.site)],
+                                 app::as_typed(s.patch.bsa_m2)};
+    try {
+      const double d = app::z_score_diameter_mm(*z_target);
+      ImGui::TextWrapped("Target: a diameter of %.2f mm, a lumen area of %.1f mm2.", d, M_PI * d * d / 4.0);
+    } catch (const std::exception& e) {
+      z_refused = e.what();
+    }
+  }
   number_field("tolerance [%]", &s.patch.tolerance_percent, 1.0f, 100.0f, 1.0f, "%.0f");
   number_field("narrowest [mm]", &s.patch.width_min, 0.5f, 50.0f, 0.5f, "%.1f");
   number_field("widest [mm]", &s.patch.width_max, 0.5f, 50.0f, 0.5f, "%.1f");
@@ -228,11 +258,13 @@ void design_controls(GuiState& s, const std::optional<json>& patch) {
   if (!why && !patch) why = "Click both incision ends first.";
   if (!why && !s.patch_preview_error.empty()) why = s.patch_preview_error;
   if (!why && !(s.patch.width_min < s.patch.width_max)) why = "The narrowest width must be below the widest.";
+  if (!why && z_refused) why = *z_refused;
   if (gated_button(s.widgets, "Design patch", why,
                    "Runs in the background; ends in Inspect with the chosen width (one undo step).") &&
       patch && obj) {
     app::DesignTarget t;
     t.min_area_mm2 = app::as_typed(s.patch.target_area);
+    t.z_score = z_target;
     t.tolerance = app::as_typed(s.patch.tolerance_percent) / 100.0;
     t.width_min = app::as_typed(s.patch.width_min);
     t.width_max = app::as_typed(s.patch.width_max);

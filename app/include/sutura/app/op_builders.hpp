@@ -125,12 +125,28 @@ nlohmann::json simulate_op(int steps, double dt, int relax_steps, bool collapse_
 /// to s = 0.6, then damped dynamics (pace-setting density 1e-6 t/mm^3, dt 0.5 ms, 80 steps
 /// to s = 1 and 40 more) and a static settle. Two simulate ops, to run one after the other.
 std::vector<nlohmann::json> flap_relaxation_ops(bool collapse_barrier);
+/// A diameter z-score as a patch design's target (DesignPatchOp::ZScore): the smallest lumen
+/// area must reach that of a circle whose diameter has z-score `z` at `site` (one of
+/// z_score_sites()) for the child's body surface area `bsa_m2`.
+struct DesignZScore {
+  double z = -1.0;
+  std::string site = "isthmus";
+  double bsa_m2 = 0.2;
+};
+/// The sites with a z-score regression, by their session names ("transverse_arch", ...).
+std::vector<std::string> z_score_sites();
+/// The diameter (mm) that `target` asks for (Pettersen et al. 2008, docs/anatomy.md). Throws
+/// std::runtime_error, in words, for a site not in z_score_sites(), z outside [-5, 5] or a
+/// body surface area outside [0.1, 2] m^2. O(1).
+double z_score_diameter_mm(const DesignZScore& target);
 /// What the window's patch design asks for (DesignPatchOp): the smallest lumen area along
 /// `centreline` (a polyline, mm; sections no wider than `max_radius` mm, one per mm of it plus
-/// one, from 11 to 101), within `tolerance` (a fraction), the largest diameter along it at most
-/// `max_bulge` times the diameter at its end, for widths in [width_min, width_max] mm.
+/// one, from 11 to 101) at least `min_area_mm2`, or with `z_score` that z-score's area,
+/// within `tolerance` (a fraction), the largest diameter along it at most `max_bulge` times the
+/// diameter at its end, for widths in [width_min, width_max] mm.
 struct DesignTarget {
   double min_area_mm2 = 20.0;
+  std::optional<DesignZScore> z_score;
   double tolerance = 0.05;
   double width_min = 2.0, width_max = 8.0;
   double max_bulge = 1.4;
