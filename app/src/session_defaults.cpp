@@ -24,7 +24,7 @@ static_assert(sizeof(engine::UnloadParams) == 184, "UnloadParams changed: pin th
 static_assert(sizeof(engine::ContactParams) == 24, "ContactParams changed: pin the new field in contact_defaults");
 static_assert(sizeof(engine::AreaBarrierParams) == 16,
               "AreaBarrierParams changed: pin the new field in area_barrier_defaults");
-static_assert(sizeof(engine::IncisionParams) == 128,
+static_assert(sizeof(engine::IncisionParams) == 136,
               "IncisionParams changed: pin the new field in incision_defaults");
 static_assert(sizeof(engine::PatchPlanParams) == 64,
               "PatchPlanParams changed: pin the new field in patch_plan_defaults");
@@ -154,6 +154,8 @@ engine::IncisionParams incision_defaults(int version) {
   p.band_width = 2.0;
   p.grading = 1.0;
   p.repair_below_deg = version >= 4 ? 20.0 : 0.0;
+  p.repair_attempts = version >= 5 ? 5 : 3;
+  p.repair_open_ends = version >= 5;
   p.constrained_vertices.clear();
   p.constrained_edges.clear();
   return p;

@@ -123,7 +123,8 @@ TEST(SessionDefaults, GivenFieldsOverrideAndTheRestKeepTheVersionsValues) {
 }
 
 // The surgery ops' settings are pinned too; the versions differ where docs/session-format.md's
-// table says so (the band remesh since 2, its second, finer remesh since 4).
+// table says so (the band remesh since 2, its second, finer remesh since 4, two finer
+// attempts and the open ends' thin faces evened out since 5).
 TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
   for (int v = 1; v <= app::kSessionFormatVersion; ++v) {
     SCOPED_TRACE(v);
@@ -136,6 +137,8 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(i.band_width, 2.0);
     EXPECT_EQ(i.grading, 1.0);
     EXPECT_EQ(i.repair_below_deg, v >= 4 ? 20.0 : 0.0);
+    EXPECT_EQ(i.repair_attempts, v >= 5 ? 5 : 3);
+    EXPECT_EQ(i.repair_open_ends, v >= 5);
     const engine::PatchPlanParams p = patch_plan_defaults(v);
     EXPECT_EQ(p.shape, engine::PatchShape::Ellipse);
     EXPECT_EQ(p.width, 4.0);
@@ -146,12 +149,14 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
   }
   EXPECT_THROW(incision_defaults(app::kSessionFormatVersion + 1), std::invalid_argument);
   // Parsed: a line that gives nothing gets its file's version's values.
-  for (int v : {3, 4}) {
+  for (int v : {3, 4, 5}) {
     const app::Session s = parse_at(v, "{\"op\": \"incise\", \"object\": \"a\", \"points\": [[0, 0, 0], [1, 0, 0]]}\n"
                                        "{\"op\": \"resect\", \"object\": \"a\", \"planes\": [{\"origin\": [0, 0, 0], "
                                        "\"normal\": [0, 0, 1]}], \"seed\": [0, 0, 1]}\n");
     const auto& incise = std::get<app::InciseOp>(s.actions.at(0).op);
     EXPECT_EQ(incise.params.repair_below_deg, incision_defaults(v).repair_below_deg);
+    EXPECT_EQ(incise.params.repair_attempts, incision_defaults(v).repair_attempts);
+    EXPECT_EQ(incise.params.repair_open_ends, incision_defaults(v).repair_open_ends);
     EXPECT_EQ(incise.params.band_width, 2.0);
     EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).params.radius, 10.0);
   }

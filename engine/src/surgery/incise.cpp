@@ -1,6 +1,7 @@
 #include "sutura/engine/surgery/incise.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <set>
@@ -309,14 +310,16 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
   // would be that edge, and the slit would close).
   rp.constrained_vertices[c[c.size() / 2].index()] = true;
+  if (params.repair_open_ends) rp.repair_below_deg = params.repair_below_deg;
   CutRemesh best = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
   result.band_before = best.before;
   // Again from the raw cut (`refined` is still the traced cut), graded out to the host's
   // spacing: the first of kRepairTargets that lifts the band to the limit, else the best. An
   // attempt that fails leaves the first remesh as it was.
-  for (const double fraction : kRepairTargets) {
+  for (int attempt = 0; attempt < params.repair_attempts; ++attempt) {
     if (!(best.after.min_angle_deg < params.repair_below_deg)) break;
+    const double fraction = kRepairTargets[attempt];
     RemeshParams finer = rp;
     finer.target_edge_length = fraction * L;
     finer.grading = std::max(params.grading, 1.5);
@@ -378,6 +381,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
     throw InvalidArgument("band_width must be in (0, 20] target edge lengths");
   if (!(params.repair_below_deg >= 0.0 && params.repair_below_deg <= 40.0))
     throw InvalidArgument("repair_below_deg must be in [0, 40] degrees");
+  if (params.repair_attempts < 0 || params.repair_attempts > static_cast<int>(std::size(kRepairTargets)))
+    throw InvalidArgument("repair_attempts must be in [0, " + std::to_string(std::size(kRepairTargets)) + "]");
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != mesh.num_vertices())
     throw InvalidArgument("constrained_vertices: one flag per vertex");
   // Crossings are inserted where the curve is, with or without the band remesh (which removes

@@ -44,7 +44,7 @@ namespace sutura::app {
 /// remeshes the band around its cut, unless "remesh": false. 4: a cut-through `incise` whose
 /// band keeps an angle below 20 degrees remeshes it again, finer at the cut
 /// ("repair_below_angle").
-inline constexpr int kSessionFormatVersion = 4;
+inline constexpr int kSessionFormatVersion = 5;
 
 /// A session that cannot be read or run. `what()` reads "FILE:LINE: op 'OP': field 'F': problem"
 /// with the parts that are known.

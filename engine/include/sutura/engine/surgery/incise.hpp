@@ -25,8 +25,8 @@ enum class IncisionMode {
 IncisionMode parse_incision_mode(const std::string& name);
 
 /// IncisionParams::repair_below_deg's band remeshes: their target edge lengths at the cut, as
-/// fractions of the band's, tried in this order.
-inline constexpr double kRepairTargets[] = {0.6, 0.45, 0.3};
+/// fractions of the band's, tried in this order (the first IncisionParams::repair_attempts).
+inline constexpr double kRepairTargets[] = {0.6, 0.45, 0.3, 0.2, 0.1};
 
 struct IncisionParams {
   IncisionMode mode = IncisionMode::CutThroughFaces;
@@ -55,6 +55,12 @@ struct IncisionParams {
   /// angle (IncisionResult::band_repair_fraction says which). Each attempt costs one band
   /// remesh. 0: off.
   double repair_below_deg = 20.0;
+  /// How many of kRepairTargets are tried, in [0, 5].
+  int repair_attempts = 5;
+  /// With repair_below_deg > 0: every band remesh (the first and the repairs) ends with
+  /// RemeshParams::repair_below_deg at that limit, which evens out a thin face on a short
+  /// open-boundary edge (a cut that ends on an open end beside one of its vertices).
+  bool repair_open_ends = true;
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;

@@ -78,6 +78,13 @@ struct RemeshParams {
   /// The default 25 leaves a margin above 20 degrees for the rest shapes the state transfer
   /// gives, which the remesher does not see (docs/remeshing.md).
   double raise_angles_below_deg = 25.0;
+  /// Degrees, in [0, 40], 0 = off: last, a face with a smaller angle on an open-boundary edge
+  /// shorter than half the (finest) target has that edge's free ends moved along the boundary,
+  /// each to midway between its boundary neighbours (on the input boundary, so the boundary's
+  /// trace is kept); then the faces with a smaller angle and those around their corners get
+  /// CGAL's angle smoothing (open boundaries, polylines and fixed vertices held), Delaunay
+  /// flips and needle collapses, 6 rounds at most. Where no face is below it, nothing changes.
+  double repair_below_deg = 0.0;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
