@@ -48,7 +48,7 @@ engine::PcgParams pcg_defaults() {
 
 }  // namespace
 
-// Versions 1 to 4 share every value below (the versions differ in surgery ops only).
+// Versions 1 to 5 share every value below (the versions differ in surgery ops only).
 engine::StaticSolverParams static_solver_defaults(int version) {
   check_version(version);
   engine::StaticSolverParams p;
@@ -155,7 +155,7 @@ engine::IncisionParams incision_defaults(int version) {
   p.grading = 1.0;
   p.repair_below_deg = version >= 4 ? 20.0 : 0.0;
   p.repair_attempts = version >= 5 ? 5 : 3;
-  p.repair_open_ends = version >= 5;
+  p.band_rim_in_band = version >= 5;
   p.constrained_vertices.clear();
   p.constrained_edges.clear();
   return p;

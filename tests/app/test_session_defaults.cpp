@@ -1,6 +1,6 @@
 // What a solver or surgery op means where a session line leaves a field out is pinned per
 // format version (app/src/session_defaults.hpp), not taken from the engine's member defaults:
-// these are the values every recorded session of versions 1 to 4 was replayed with. A change here changes
+// these are the values every recorded session of versions 1 to 5 was replayed with. A change here changes
 // what recorded sessions mean (tests/golden/position_hashes.txt shows it on the bundled ones).
 #include <gtest/gtest.h>
 
@@ -124,7 +124,7 @@ TEST(SessionDefaults, GivenFieldsOverrideAndTheRestKeepTheVersionsValues) {
 
 // The surgery ops' settings are pinned too; the versions differ where docs/session-format.md's
 // table says so (the band remesh since 2, its second, finer remesh since 4, two finer
-// attempts and the open ends' thin faces evened out since 5).
+// attempts and the faces split at the band's rim counted as the band's since 5).
 TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
   for (int v = 1; v <= app::kSessionFormatVersion; ++v) {
     SCOPED_TRACE(v);
@@ -138,7 +138,7 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(i.grading, 1.0);
     EXPECT_EQ(i.repair_below_deg, v >= 4 ? 20.0 : 0.0);
     EXPECT_EQ(i.repair_attempts, v >= 5 ? 5 : 3);
-    EXPECT_EQ(i.repair_open_ends, v >= 5);
+    EXPECT_EQ(i.band_rim_in_band, v >= 5);
     const engine::PatchPlanParams p = patch_plan_defaults(v);
     EXPECT_EQ(p.shape, engine::PatchShape::Ellipse);
     EXPECT_EQ(p.width, 4.0);
@@ -156,7 +156,7 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     const auto& incise = std::get<app::InciseOp>(s.actions.at(0).op);
     EXPECT_EQ(incise.params.repair_below_deg, incision_defaults(v).repair_below_deg);
     EXPECT_EQ(incise.params.repair_attempts, incision_defaults(v).repair_attempts);
-    EXPECT_EQ(incise.params.repair_open_ends, incision_defaults(v).repair_open_ends);
+    EXPECT_EQ(incise.params.band_rim_in_band, incision_defaults(v).band_rim_in_band);
     EXPECT_EQ(incise.params.band_width, 2.0);
     EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).params.radius, 10.0);
   }

@@ -750,6 +750,12 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
       if (patch[f] & 1) in_region[f] = true;
   }
 
+  // A face outside the region that the bands split (an edge of the region's rim was split: it
+  // has a new vertex) is a face the remesh made.
+  if (in.rim_splits_in_region)
+    for (FI f : mesh.faces())
+      for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+        if (old_id[v] < 0) in_region[f] = true;
   delaunay_flips(mesh, econ, in_region);
   for (int round = 0; round < 4; ++round) {
     if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline) == 0) break;
@@ -836,12 +842,10 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     const double below = in.repair_below_deg * M_PI / 180.0;
     // A thin face on a short open-boundary edge: both ends of the edge move along the
     // boundary, each to midway between its two boundary neighbours (on the input polyline), as
-    // no interior move can widen that face. A move that would fold a face, or change a face
-    // outside the region, is not made.
+    // no interior move can widen that face. A move that would fold a face is not made.
     for (HI h : mesh.halfedges()) {
       if (!mesh.is_border(h)) continue;
       const HI inner = mesh.opposite(h);
-      if (!in_region[mesh.face(inner)]) continue;
       const Point &a = mesh.point(mesh.source(inner)), &b = mesh.point(mesh.target(inner));
       const Point& c = mesh.point(mesh.target(mesh.next(inner)));
       if (std::sqrt(CGAL::squared_distance(a, b)) >= 0.5 * in.bands.back().target_edge_length ||
@@ -849,10 +853,6 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
         continue;
       for (const VI r : {mesh.source(h), mesh.target(h)}) {
         if (vfixed[r]) continue;
-        bool inside = true;
-        for (FI f : CGAL::faces_around_target(mesh.halfedge(r), mesh))
-          if (f != Mesh::null_face() && !in_region[f]) inside = false;
-        if (!inside) continue;
         // The border half-edges into and out of r.
         HI into = Mesh::null_halfedge();
         for (HI g : CGAL::halfedges_around_target(mesh.halfedge(r), mesh))
@@ -875,17 +875,8 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
         }
       }
     }
-    // Held: fixed, on the open boundary or a polyline, or a corner of a face outside the
-    // region (which must not change).
     auto held = mesh.add_property_map<VI, bool>("v:repair_held", false).first;
-    const auto hold = [&] {
-      for (VI v : mesh.vertices()) {
-        held[v] = vfixed[v] || mesh.is_border(v) || on_polyline(v);
-        for (FI f : CGAL::faces_around_target(mesh.halfedge(v), mesh))
-          if (f != Mesh::null_face() && !in_region[f]) held[v] = true;
-      }
-    };
-    hold();
+    for (VI v : mesh.vertices()) held[v] = vfixed[v] || mesh.is_border(v) || on_polyline(v);
     for (int round = 0; round < 6; ++round) {
       std::vector<FI> region;
       for (FI f : mesh.faces()) {
@@ -912,7 +903,7 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
       delaunay_flips(mesh, econ, in_region);
       if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline, below) > 0) {
         delaunay_flips(mesh, econ, in_region);
-        hold();
+        for (VI v : mesh.vertices()) held[v] = vfixed[v] || mesh.is_border(v) || on_polyline(v);
       }
     }
     mesh.remove_property_map(held);

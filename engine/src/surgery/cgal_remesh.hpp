@@ -47,6 +47,10 @@ struct CgalRemeshInput {
   /// input, each only where that raises the smallest angle of its faces (then Delaunay flips;
   /// 4 rounds at most). 0: off.
   double raise_angles_below_deg = 0.0;
+  /// After the bands, a face outside the region that has a new vertex (its edge on the
+  /// region's rim was split) joins the region: the passes below reach it and the output flags
+  /// it as remeshed.
+  bool rim_splits_in_region = false;
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
   /// and the faces around their corners get CGAL's angle smoothing (open boundaries, polylines

@@ -310,7 +310,7 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
   // would be that edge, and the slit would close).
   rp.constrained_vertices[c[c.size() / 2].index()] = true;
-  if (params.repair_open_ends) rp.repair_below_deg = params.repair_below_deg;
+  rp.rim_splits_in_region = params.band_rim_in_band;
   CutRemesh best = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
   result.band_before = best.before;
@@ -325,9 +325,9 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
     finer.grading = std::max(params.grading, 1.5);
     finer.grading_curve = trace;
     try {
-      CutRemesh attempt = remesh_keeping_cut(finer, refined, maps, c);
-      if (attempt.after.min_angle_deg > best.after.min_angle_deg) {
-        best = std::move(attempt);
+      CutRemesh tried = remesh_keeping_cut(finer, refined, maps, c);
+      if (tried.after.min_angle_deg > best.after.min_angle_deg) {
+        best = std::move(tried);
         result.band_repair_fraction = fraction;
       }
     } catch (const InvalidArgument&) {

@@ -215,9 +215,6 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   if (!(params.raise_angles_below_deg >= 0.0 && params.raise_angles_below_deg <= 40.0))
     throw InvalidArgument("raise_angles_below_deg must be in [0, 40], got " +
                           std::to_string(params.raise_angles_below_deg));
-  if (!(params.repair_below_deg >= 0.0 && params.repair_below_deg <= 40.0))
-    throw InvalidArgument("repair_below_deg must be in [0, 40], got " +
-                          std::to_string(params.repair_below_deg));
   if (params.iterations < 1 || params.iterations > 100)
     throw InvalidArgument("iterations must be in [1, 100], got " +
                           std::to_string(params.iterations));
@@ -238,7 +235,7 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   in.region = region;
   in.iterations = params.iterations;
   in.raise_angles_below_deg = params.raise_angles_below_deg;
-  in.repair_below_deg = params.repair_below_deg;
+  in.rim_splits_in_region = params.rim_splits_in_region;
   in.constrained_vertices = params.constrained_vertices;
   in.constrained_vertices.resize(nv, false);
   // Ends and junctions of constrained polylines stay put: a vertex with other than two

@@ -336,6 +336,9 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
     worst_lip = std::max(worst_lip, lips_from_trace(arch, points, r));
     worst_angle = std::min(worst_angle, r.band_after.min_angle_deg);
     below_20 += r.band_after.min_angle_deg < 20.0;
+    // The band's quality includes the faces its remesh split at its rim: nothing outside it
+    // (the arch is 29.8 degrees) is worse.
+    EXPECT_GE(mesh_quality(r.mesh).min_angle_deg, std::min(20.0, r.band_after.min_angle_deg));
     // Below 20 degrees only where the drawing forces it: at a corner where the cut meets an
     // open end at a smaller angle (no triangle there can have a larger one).
     if (r.band_after.min_angle_deg < 20.0) {
@@ -365,12 +368,12 @@ TEST(Incise, MoreRandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
 }
 
 // Format 4's repair (three finer remeshes) against the defaults (five, the last two at 0.2
-// and 0.1 of the band's target, and a thin face on a short open-boundary edge evened out):
+// and 0.1 of the band's target, and the faces split at the band's rim counted as the band's):
 // random curves of the property test that end on an open end.
-IncisionParams format_4_repair() {
+IncisionParams format_4_repair(int attempts = 3, bool rim = false) {
   IncisionParams p;
-  p.repair_attempts = 3;
-  p.repair_open_ends = false;
+  p.repair_attempts = attempts;
+  p.band_rim_in_band = rim;
   return p;
 }
 
@@ -423,13 +426,17 @@ TEST(Incise, ABandLeftBelowTheLimitIsRemeshedAgainFinerAtTheCut) {
 }
 
 // A cut ending on an open end 0.2 mm from one of its vertices (the cut meets the end at 25
-// degrees): the face between them was 18.6 degrees; the vertex moves along the open end.
-TEST(Incise, AThinFaceWhereACutMeetsAnOpenEndBesideItsVertexIsEvenedOut) {
+// degrees): the face between them stayed at 18.6 degrees. With the faces split at the band's
+// rim in the band, the passes that raise angles reach further and it is lifted (25.3 degrees,
+// with or without the two finer attempts).
+TEST(Incise, AThinFaceWhereACutMeetsAnOpenEndBesideItsVertexIsLifted) {
   const SurfaceMesh arch = coarse_arch();
   const std::vector<Vec3> points = random_curve(arch, 20261204, 503);
   const IncisionResult before = incise(arch, points, format_4_repair());
   ASSERT_TRUE(before.ends_on_boundary);
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
+  EXPECT_LT(incise(arch, points, format_4_repair(5, false)).band_after.min_angle_deg, 20.0);
+  EXPECT_GE(incise(arch, points, format_4_repair(3, true)).band_after.min_angle_deg, 20.0);
   const IncisionResult after = incise(arch, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
   EXPECT_GE(mesh_quality(after.mesh).min_angle_deg, 20.0);
@@ -438,14 +445,36 @@ TEST(Incise, AThinFaceWhereACutMeetsAnOpenEndBesideItsVertexIsEvenedOut) {
   EXPECT_EQ(after.mesh.boundary_loops().size(), before.mesh.boundary_loops().size());
 }
 
+// A cut 0.2 mm from an open end of the generated tube (right triangles of 34.8 degrees): the
+// band remesh splits the long edges of faces just outside it, which gave 19.5 degrees outside
+// the band's reported quality; since format 5 those faces are the band's.
+TEST(Incise, FacesSplitAtTheBandsRimAreTheBands) {
+  const SurfaceMesh tube = make_tube({4.0, 30.0, 24, 20});
+  std::vector<Vec3> points;
+  for (int i = 0; i < 15; ++i) points.emplace_back(4.0 * std::cos(0.2 + 0.1 * i), 4.0 * std::sin(0.2 + 0.1 * i), 0.2);
+  const IncisionResult before = incise(tube, points, format_4_repair());
+  ASSERT_GE(before.band_after.min_angle_deg, 20.0);
+  ASSERT_LT(mesh_quality(before.mesh).min_angle_deg, 20.0);  // what the test is about
+  const IncisionResult after = incise(tube, points);
+  EXPECT_GE(after.band_after.min_angle_deg, 20.0);
+  EXPECT_EQ(mesh_quality(after.mesh).min_angle_deg, after.band_after.min_angle_deg);
+  EXPECT_TRUE(after.mesh.validate().ok());
+  EXPECT_LT(lips_from_trace(tube, points, after), 1e-6);
+}
+
 // A nick 0.34 mm long at an open end: its lips are two edges of 0.17 mm, which a band of a
-// third of the host's spacing (0.3 mm) could not fit; a fifth of it can.
+// third of the host's spacing (0.3 mm) could not fit. A fifth of it can (22.7 degrees); the
+// faces split at the rim counted as the band's lift it too (25.0 degrees).
 TEST(Incise, AShortNickAtAnOpenEndIsRemeshedFinerThanAThirdOfTheBand) {
   const SurfaceMesh arch = coarse_arch();
   const std::vector<Vec3> points = random_curve(arch, 20261203, 615);
   const IncisionResult before = incise(arch, points, format_4_repair());
   ASSERT_LT(before.length, 0.4);
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
+  const IncisionResult finer = incise(arch, points, format_4_repair(5, false));
+  EXPECT_GE(finer.band_after.min_angle_deg, 20.0);
+  EXPECT_LE(finer.band_repair_fraction, 0.2);
+  EXPECT_GE(incise(arch, points, format_4_repair(3, true)).band_after.min_angle_deg, 20.0);
   const IncisionResult after = incise(arch, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
   EXPECT_TRUE(after.mesh.validate().ok());

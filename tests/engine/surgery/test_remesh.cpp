@@ -152,53 +152,6 @@ TEST(Remesh, CornersOfThinFacesMoveAndTheSmallestAngleNeverFalls) {
   EXPECT_GT(smallest[1], smallest[0] + 1.0);
 }
 
-// RemeshParams::repair_below_deg evens out thin faces on short open-boundary edges (what it
-// does inside a region: Incise.AThinFaceWhereACutMeetsAnOpenEndBesideItsVertexIsEvenedOut).
-// Outside the region it touches nothing: a thin face there on a 0.15 mm open-boundary edge
-// (8.5 degrees) and every other face outside stay as they were, bit for bit.
-TEST(Remesh, TheRepairPassLeavesThinFacesOutsideTheRegionAlone) {
-  const SurfaceMesh grid = make_strip({20.0, 10.0, 20, 10});
-  std::vector<Vec3> x = grid.positions();
-  double low = 1e300;
-  for (const Vec3& q : x) low = std::min(low, q.y());
-  for (Vec3& q : x)
-    if (q.y() == low && q.x() == 5.0) q.x() = 4.15;
-  const SurfaceMesh m(x, grid.faces());
-  const auto smallest_near = [](const SurfaceMesh& mesh, const Vec3& c) {
-    double a = 180.0;
-    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-      const auto t = mesh.face_vertices(FaceId(static_cast<std::int32_t>(f)));
-      const Vec3 centre = (mesh.position(t[0]) + mesh.position(t[1]) + mesh.position(t[2])) / 3.0;
-      if ((centre - c).norm() < 1.5)
-        a = std::min(a, smallest_angle_deg(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2])));
-    }
-    return a;
-  };
-  const Vec3 thin(4.0, low, 0.0);
-  ASSERT_LT(smallest_near(m, thin), 10.0);
-  RemeshParams p;
-  p.target_edge_length = 1.0;
-  p.region = faces_near_polyline(m, {Vec3(14, low, 0)}, 3.0);
-  p.repair_below_deg = 20.0;
-  const RemeshResult r = remesh(m, p);
-  ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
-  EXPECT_GE(r.after.min_angle_deg, 20.0);
-  EXPECT_EQ(smallest_near(r.mesh, thin), smallest_near(m, thin));
-  std::size_t kept = 0;
-  for (std::size_t f = 0; f < r.mesh.num_faces(); ++f) {
-    const FaceOrigin& o = r.maps.faces[f];
-    if (o.kind != FaceOriginKind::Subface) continue;
-    ++kept;
-    const auto nv = r.mesh.face_vertices(FaceId(static_cast<std::int32_t>(f)));
-    const auto ov = m.face_vertices(o.parent);
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(r.mesh.position(nv[k]), m.position(ov[k]));
-  }
-  EXPECT_GT(kept, m.num_faces() - p.region->size() - 40);
-  RemeshParams bad = p;
-  bad.repair_below_deg = 41.0;
-  EXPECT_THROW((void)remesh(m, bad), InvalidArgument);
-}
-
 // The region around small angles: the faces touching a corner of a face below the limit
 // (radius 0), more within a radius along the edges, none on another sheet close by in space.
 TEST(Remesh, TheRegionAroundSmallAnglesFollowsTheEdges) {

@@ -43,7 +43,8 @@ namespace sutura::app {
 /// chains resampled to one spacing and remeshed around before the suture) and `resect`
 /// remeshes the band around its cut, unless "remesh": false. 4: a cut-through `incise` whose
 /// band keeps an angle below 20 degrees remeshes it again, finer at the cut
-/// ("repair_below_angle").
+/// ("repair_below_angle"). 5: the faces just outside that band which its remesh splits are
+/// the band's, and the repair tries two finer remeshes more.
 inline constexpr int kSessionFormatVersion = 5;
 
 /// A session that cannot be read or run. `what()` reads "FILE:LINE: op 'OP': field 'F': problem"

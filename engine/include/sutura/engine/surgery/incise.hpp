@@ -57,10 +57,10 @@ struct IncisionParams {
   double repair_below_deg = 20.0;
   /// How many of kRepairTargets are tried, in [0, 5].
   int repair_attempts = 5;
-  /// With repair_below_deg > 0: every band remesh (the first and the repairs) ends with
-  /// RemeshParams::repair_below_deg at that limit, which evens out a thin face on a short
-  /// open-boundary edge (a cut that ends on an open end beside one of its vertices).
-  bool repair_open_ends = true;
+  /// Every band remesh counts the faces just outside the band that it splits as the band's
+  /// (RemeshParams::rim_splits_in_region): their angles are raised too, and band_after and the
+  /// repair's decision include them.
+  bool band_rim_in_band = true;
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;

@@ -78,13 +78,11 @@ struct RemeshParams {
   /// The default 25 leaves a margin above 20 degrees for the rest shapes the state transfer
   /// gives, which the remesher does not see (docs/remeshing.md).
   double raise_angles_below_deg = 25.0;
-  /// Degrees, in [0, 40], 0 = off: last, a face with a smaller angle on an open-boundary edge
-  /// shorter than half the (finest) target has that edge's free ends moved along the boundary,
-  /// each to midway between its boundary neighbours (on the input boundary, so the boundary's
-  /// trace is kept); then the faces with a smaller angle and those around their corners get
-  /// CGAL's angle smoothing (open boundaries, polylines and fixed vertices held), Delaunay
-  /// flips and needle collapses, 6 rounds at most. Where no face is below it, nothing changes.
-  double repair_below_deg = 0.0;
+  /// A face outside the region that the remesh splits (where it splits an edge of the
+  /// region's rim) counts as remeshed: the passes that raise angles reach it, and `after` and
+  /// `region` include it. Off, such faces are left as split and not reported (session formats
+  /// before 5).
+  bool rim_splits_in_region = false;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
