@@ -410,15 +410,22 @@ nlohmann::json action(const ReplayResult& r, const std::string& op) {
   return {};
 }
 
+// An incise line on object "t" along the circle of radius 4 at height z, from angle a0 (rad)
+// in `count` steps of da.
+std::string incise_around(double a0, double da, int count, double z) {
+  std::string line = "{\"op\": \"incise\", \"object\": \"t\", \"points\": [";
+  for (int i = 0; i < count; ++i) {
+    const double a = a0 + da * i;
+    line += (i ? ", [" : "[") + std::to_string(4.0 * std::cos(a)) + ", " + std::to_string(4.0 * std::sin(a)) + ", " +
+            std::to_string(z) + "]";
+  }
+  return line + "]}\n";
+}
+
 // Version 4 remeshes a band left below 20 degrees again, finer at the cut (an incision 0.3 mm
 // from the tube's open end, with 1 mm edges); version 3 sessions keep the band as it was.
 TEST(SurgeryOps, TheSessionVersionDecidesWhetherAThinBandIsRemeshedAgain) {
-  std::string incise = "{\"op\": \"incise\", \"object\": \"t\", \"points\": [";
-  for (int i = 0; i < 7; ++i) {
-    const double a = 0.1 + 0.25 * i;
-    incise += (i ? ", [" : "[") + std::to_string(4.0 * std::cos(a)) + ", " + std::to_string(4.0 * std::sin(a)) + ", 0.3]";
-  }
-  incise += "]}\n";
+  const std::string incise = incise_around(0.1, 0.25, 7, 0.3);
   const auto band = [&](const std::string& header, const std::string& text, const std::string& name) {
     return action(run(header + kTube + text, name), "incise")["remesh"]["after"]["min_angle_deg"].get<double>();
   };
@@ -439,12 +446,7 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherAThinBandIsRemeshedAgain) {
 // band remesh splits faces at its rim to 19.5 degrees, outside the band's reported quality;
 // version 5 counts them as the band's and lifts them.
 TEST(SurgeryOps, TheSessionVersionDecidesWhetherFacesSplitAtTheBandsRimAreTheBands) {
-  std::string incise = "{\"op\": \"incise\", \"object\": \"t\", \"points\": [";
-  for (int i = 0; i < 15; ++i) {
-    const double a = 0.2 + 0.1 * i;
-    incise += (i ? ", [" : "[") + std::to_string(4.0 * std::cos(a)) + ", " + std::to_string(4.0 * std::sin(a)) + ", 0.2]";
-  }
-  incise += "]}\n";
+  const std::string incise = incise_around(0.2, 0.1, 15, 0.2);
   const std::string tube =
       "{\"op\": \"generate\", \"object\": \"t\", \"shape\": \"tube\", \"radius\": 4, \"length\": 30, "
       "\"segments_around\": 24, \"segments_along\": 20}\n";
