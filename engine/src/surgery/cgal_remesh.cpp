@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <memory>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -750,12 +751,29 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
       if (patch[f] & 1) in_region[f] = true;
   }
 
-  // A face outside the region that the bands split (an edge of the region's rim was split: it
-  // has a new vertex) is a face the remesh made.
-  if (in.rim_splits_in_region)
-    for (FI f : mesh.faces())
-      for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-        if (old_id[v] < 0) in_region[f] = true;
+  // A face outside the region that the bands changed (an edge of the region's rim was split or
+  // collapsed: it has a new or moved corner, or corners no input face has) is a face the remesh
+  // made.
+  if (in.rim_splits_in_region) {
+    std::set<std::array<int, 3>> input_faces;
+    for (const FaceIndices& t : F) {
+      std::array<int, 3> key{t[0], t[1], t[2]};
+      std::sort(key.begin(), key.end());
+      input_faces.insert(key);
+    }
+    for (FI f : mesh.faces()) {
+      if (in_region[f]) continue;
+      std::array<int, 3> key{};
+      int k = 0;
+      bool changed = false;
+      for (VI v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+        key[k++] = old_id[v];
+        changed = changed || old_id[v] < 0 || mesh.point(v) != to_point(X[static_cast<std::size_t>(old_id[v])]);
+      }
+      std::sort(key.begin(), key.end());
+      if (changed || input_faces.count(key) == 0) in_region[f] = true;
+    }
+  }
   delaunay_flips(mesh, econ, in_region);
   for (int round = 0; round < 4; ++round) {
     if (collapse_needles(mesh, econ, vfixed, old_id, in_region, on_polyline) == 0) break;

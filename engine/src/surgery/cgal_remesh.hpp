@@ -47,9 +47,9 @@ struct CgalRemeshInput {
   /// input, each only where that raises the smallest angle of its faces (then Delaunay flips;
   /// 4 rounds at most). 0: off.
   double raise_angles_below_deg = 0.0;
-  /// After the bands, a face outside the region that has a new vertex (its edge on the
-  /// region's rim was split) joins the region: the passes below reach it and the output flags
-  /// it as remeshed.
+  /// After the bands, a face outside the region that they changed (a new or moved corner, or
+  /// corners no input face has: an edge on the region's rim was split or collapsed) joins the
+  /// region: the passes below reach it and the output flags it as remeshed.
   bool rim_splits_in_region = false;
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
@@ -75,7 +75,7 @@ struct CgalRemeshOutput {
   std::vector<int> old_face;  ///< per output face: the input face it is (same corners), or -1
   std::vector<SurfaceLocation> face_location;  ///< per output face that is not an input face:
                                                ///< where its centroid lies
-  std::vector<bool> region;  ///< per output face: inside a remeshed band
+  std::vector<bool> region;  ///< per output face: remeshed (in a band, or a rim face joined to it)
   std::vector<std::pair<int, int>> constrained_edges;
 };
 

@@ -367,10 +367,10 @@ TEST(Incise, MoreRandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
   cut_random_smooth_curves_on_the_arch(20261204);
 }
 
-// Format 4's repair (three finer remeshes) against the defaults (five, the last two at 0.2
-// and 0.1 of the band's target, and the faces split at the band's rim counted as the band's):
-// random curves of the property test that end on an open end.
-IncisionParams format_4_repair(int attempts = 3, bool rim = false) {
+// The band repair's settings: `attempts` of kRepairTargets, the faces the remesh changes at the
+// band's rim counted as the band's or not. Format 4 is (3, false), the defaults (format 5) are
+// (5, true). Used on random curves of the property test that end on an open end.
+IncisionParams repair_settings(int attempts = 3, bool rim = false) {
   IncisionParams p;
   p.repair_attempts = attempts;
   p.band_rim_in_band = rim;
@@ -397,7 +397,7 @@ TEST(Incise, ABandLeftBelowTheLimitIsRemeshedAgainFinerAtTheCut) {
   off.repair_below_deg = 0.0;
   const IncisionResult before = incise(arch, points, off);
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
-  const IncisionResult after = incise(arch, points, format_4_repair());
+  const IncisionResult after = incise(arch, points, repair_settings());
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
   EXPECT_GT(after.band_repair_fraction, 0.0);
   EXPECT_GE(incise(arch, points).band_after.min_angle_deg, 20.0);  // and with the defaults
@@ -432,11 +432,11 @@ TEST(Incise, ABandLeftBelowTheLimitIsRemeshedAgainFinerAtTheCut) {
 TEST(Incise, AThinFaceWhereACutMeetsAnOpenEndBesideItsVertexIsLifted) {
   const SurfaceMesh arch = coarse_arch();
   const std::vector<Vec3> points = random_curve(arch, 20261204, 503);
-  const IncisionResult before = incise(arch, points, format_4_repair());
+  const IncisionResult before = incise(arch, points, repair_settings());
   ASSERT_TRUE(before.ends_on_boundary);
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
-  EXPECT_LT(incise(arch, points, format_4_repair(5, false)).band_after.min_angle_deg, 20.0);
-  EXPECT_GE(incise(arch, points, format_4_repair(3, true)).band_after.min_angle_deg, 20.0);
+  EXPECT_LT(incise(arch, points, repair_settings(5, false)).band_after.min_angle_deg, 20.0);
+  EXPECT_GE(incise(arch, points, repair_settings(3, true)).band_after.min_angle_deg, 20.0);
   const IncisionResult after = incise(arch, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
   EXPECT_GE(mesh_quality(after.mesh).min_angle_deg, 20.0);
@@ -452,11 +452,12 @@ TEST(Incise, FacesSplitAtTheBandsRimAreTheBands) {
   const SurfaceMesh tube = make_tube({4.0, 30.0, 24, 20});
   std::vector<Vec3> points;
   for (int i = 0; i < 15; ++i) points.emplace_back(4.0 * std::cos(0.2 + 0.1 * i), 4.0 * std::sin(0.2 + 0.1 * i), 0.2);
-  const IncisionResult before = incise(tube, points, format_4_repair());
+  const IncisionResult before = incise(tube, points, repair_settings());
   ASSERT_GE(before.band_after.min_angle_deg, 20.0);
   ASSERT_LT(mesh_quality(before.mesh).min_angle_deg, 20.0);  // what the test is about
   const IncisionResult after = incise(tube, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
+  EXPECT_GE(mesh_quality(after.mesh).min_angle_deg, 20.0);
   EXPECT_EQ(mesh_quality(after.mesh).min_angle_deg, after.band_after.min_angle_deg);
   EXPECT_TRUE(after.mesh.validate().ok());
   EXPECT_LT(lips_from_trace(tube, points, after), 1e-6);
@@ -468,13 +469,13 @@ TEST(Incise, FacesSplitAtTheBandsRimAreTheBands) {
 TEST(Incise, AShortNickAtAnOpenEndIsRemeshedFinerThanAThirdOfTheBand) {
   const SurfaceMesh arch = coarse_arch();
   const std::vector<Vec3> points = random_curve(arch, 20261203, 615);
-  const IncisionResult before = incise(arch, points, format_4_repair());
+  const IncisionResult before = incise(arch, points, repair_settings());
   ASSERT_LT(before.length, 0.4);
   ASSERT_LT(before.band_after.min_angle_deg, 20.0);  // what the test is about
-  const IncisionResult finer = incise(arch, points, format_4_repair(5, false));
+  const IncisionResult finer = incise(arch, points, repair_settings(5, false));
   EXPECT_GE(finer.band_after.min_angle_deg, 20.0);
   EXPECT_LE(finer.band_repair_fraction, 0.2);
-  EXPECT_GE(incise(arch, points, format_4_repair(3, true)).band_after.min_angle_deg, 20.0);
+  EXPECT_GE(incise(arch, points, repair_settings(3, true)).band_after.min_angle_deg, 20.0);
   const IncisionResult after = incise(arch, points);
   EXPECT_GE(after.band_after.min_angle_deg, 20.0);
   EXPECT_TRUE(after.mesh.validate().ok());

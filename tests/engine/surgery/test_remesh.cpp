@@ -115,6 +115,30 @@ TEST(Remesh, ConstrainedVerticesAndPolylinesAreKept) {
 // Two fixed vertices a third of the target apart force thin faces on the short edge between
 // them: raising the corners of thin faces lifts the region's smallest angle and moves no
 // fixed vertex.
+// RemeshParams::rim_splits_in_region: the faces outside the region that a remesh at half the
+// spacing splits at the region's rim are reported as remeshed; with it, every face outside
+// the reported region is an old face, bit for bit.
+TEST(Remesh, FacesChangedAtTheRegionsRimCountAsRemeshed) {
+  const SurfaceMesh m = make_strip({40.0, 10.0, 40, 10});
+  RemeshParams p;
+  p.target_edge_length = 0.5;
+  p.region = faces_near_polyline(m, {Vec3(15, 0, 0), Vec3(25, 0, 0)}, 2.5);
+  std::size_t changed_outside[2];
+  for (const bool rim : {false, true}) {
+    p.rim_splits_in_region = rim;
+    const RemeshResult r = remesh(m, p);
+    ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
+    std::vector<bool> in(r.mesh.num_faces(), false);
+    for (const FaceId f : r.region) in[f.index()] = true;
+    changed_outside[rim] = 0;
+    for (std::size_t f = 0; f < r.mesh.num_faces(); ++f)
+      if (!in[f] && r.maps.faces[f].kind != FaceOriginKind::Subface) ++changed_outside[rim];
+    EXPECT_EQ(r.after.faces, r.region.size());
+  }
+  EXPECT_GT(changed_outside[0], 0u);  // what the test is about: the rim was split
+  EXPECT_EQ(changed_outside[1], 0u);
+}
+
 TEST(Remesh, CornersOfThinFacesMoveAndTheSmallestAngleNeverFalls) {
   const SurfaceMesh grid = make_strip({20.0, 10.0, 20, 10});
   std::vector<Vec3> x = grid.positions();

@@ -84,7 +84,9 @@ struct IncisionResult {
   int snapped_points = 0;     ///< cut vertices that are vertices of the mesh passed in
   double length = 0.0;        ///< mm, along the cut
   bool remeshed = false;      ///< the band around the cut was remeshed
-  MeshQuality band_before, band_after;  ///< of the band, when remeshed
+  /// Of the band, when remeshed; band_after includes the faces just outside it that its remesh
+  /// changed when IncisionParams::band_rim_in_band is set (band_before does not).
+  MeshQuality band_before, band_after;
   /// The kRepairTargets fraction whose remesh was kept (IncisionParams::repair_below_deg);
   /// 0: the first remesh was kept.
   double band_repair_fraction = 0.0;

@@ -78,10 +78,10 @@ struct RemeshParams {
   /// The default 25 leaves a margin above 20 degrees for the rest shapes the state transfer
   /// gives, which the remesher does not see (docs/remeshing.md).
   double raise_angles_below_deg = 25.0;
-  /// A face outside the region that the remesh splits (where it splits an edge of the
-  /// region's rim) counts as remeshed: the passes that raise angles reach it, and `after` and
-  /// `region` include it. Off, such faces are left as split and not reported (session formats
-  /// before 5).
+  /// A face outside the region that the remesh changes (where it splits or collapses an edge of
+  /// the region's rim) counts as remeshed: the passes that raise angles reach it, and `after`
+  /// and `region` include it. Off, such faces keep what the split or collapse made of them and
+  /// are not reported. On only for incise's bands since session format 5.
   bool rim_splits_in_region = false;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
@@ -100,8 +100,10 @@ struct RemeshParams {
 struct RemeshResult {
   SurfaceMesh mesh;
   EditMaps maps;  ///< from the mesh passed in
-  MeshQuality before, after;  ///< of the region (before) and of the faces it became (after)
-  std::vector<FaceId> region;  ///< faces of the new mesh that were remeshed
+  /// Of the region (before) and of the faces it became (after), with rim_splits_in_region the
+  /// rim faces the remesh changed too (after only).
+  MeshQuality before, after;
+  std::vector<FaceId> region;  ///< faces of the new mesh that were remeshed (as `after`)
   /// The constrained edges of the new mesh (sub-edges of the given ones), as vertex pairs.
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
 };
