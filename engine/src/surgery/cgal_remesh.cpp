@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <map>
-#include <set>
 #include <memory>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -754,13 +753,15 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
   // A face outside the region that the bands changed (an edge of the region's rim was split or
   // collapsed: it has a new or moved corner, or corners no input face has) is a face the remesh
   // made.
-  if (in.rim_splits_in_region) {
-    std::set<std::array<int, 3>> input_faces;
-    for (const FaceIndices& t : F) {
-      std::array<int, 3> key{t[0], t[1], t[2]};
-      std::sort(key.begin(), key.end());
-      input_faces.insert(key);
-    }
+  // Old faces by their vertex triple, to recognise faces the remesh left alone (here and in the
+  // output).
+  std::map<std::array<int, 3>, int> old_face;
+  for (std::size_t f = 0; f < F.size(); ++f) {
+    std::array<int, 3> key{F[f][0], F[f][1], F[f][2]};
+    std::sort(key.begin(), key.end());
+    old_face.emplace(key, static_cast<int>(f));
+  }
+  if (in.rim_faces_in_region) {
     for (FI f : mesh.faces()) {
       if (in_region[f]) continue;
       std::array<int, 3> key{};
@@ -771,7 +772,7 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
         changed = changed || old_id[v] < 0 || mesh.point(v) != to_point(X[static_cast<std::size_t>(old_id[v])]);
       }
       std::sort(key.begin(), key.end());
-      if (changed || input_faces.count(key) == 0) in_region[f] = true;
+      if (changed || old_face.count(key) == 0) in_region[f] = true;
     }
   }
   delaunay_flips(mesh, econ, in_region);
@@ -927,13 +928,6 @@ CgalRemeshOutput cgal_remesh(const CgalRemeshInput& in) {
     mesh.remove_property_map(held);
   }
 
-  // Old faces by their vertex triple, to recognise faces the remesh left alone.
-  std::map<std::array<int, 3>, int> old_face;
-  for (std::size_t f = 0; f < F.size(); ++f) {
-    std::array<int, 3> key{F[f][0], F[f][1], F[f][2]};
-    std::sort(key.begin(), key.end());
-    old_face.emplace(key, static_cast<int>(f));
-  }
   const auto locate = [&](const Vec3& p, int on_sheet) {
     const auto [q, face] = surface[static_cast<std::size_t>(on_sheet)]->closest_point_and_primitive(to_point(p));
     SurfaceLocation loc;

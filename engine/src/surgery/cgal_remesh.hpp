@@ -50,7 +50,7 @@ struct CgalRemeshInput {
   /// After the bands, a face outside the region that they changed (a new or moved corner, or
   /// corners no input face has: an edge on the region's rim was split or collapsed) joins the
   /// region: the passes below reach it and the output flags it as remeshed.
-  bool rim_splits_in_region = false;
+  bool rim_faces_in_region = false;
   /// Last, a thin face (an angle below this, degrees) on an open-boundary edge shorter than
   /// half the target has that edge's ends moved along the boundary to even it out; then thin faces
   /// and the faces around their corners get CGAL's angle smoothing (open boundaries, polylines

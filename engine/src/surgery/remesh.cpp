@@ -235,7 +235,7 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   in.region = region;
   in.iterations = params.iterations;
   in.raise_angles_below_deg = params.raise_angles_below_deg;
-  in.rim_splits_in_region = params.rim_splits_in_region;
+  in.rim_faces_in_region = params.rim_faces_in_region;
   in.constrained_vertices = params.constrained_vertices;
   in.constrained_vertices.resize(nv, false);
   // Ends and junctions of constrained polylines stay put: a vertex with other than two

@@ -115,7 +115,7 @@ TEST(Remesh, ConstrainedVerticesAndPolylinesAreKept) {
 // Two fixed vertices a third of the target apart force thin faces on the short edge between
 // them: raising the corners of thin faces lifts the region's smallest angle and moves no
 // fixed vertex.
-// RemeshParams::rim_splits_in_region: the faces outside the region that a remesh at half the
+// RemeshParams::rim_faces_in_region: the faces outside the region that a remesh at half the
 // spacing splits at the region's rim are reported as remeshed; with it, every face outside
 // the reported region is an old face, bit for bit.
 TEST(Remesh, FacesChangedAtTheRegionsRimCountAsRemeshed) {
@@ -125,7 +125,7 @@ TEST(Remesh, FacesChangedAtTheRegionsRimCountAsRemeshed) {
   p.region = faces_near_polyline(m, {Vec3(15, 0, 0), Vec3(25, 0, 0)}, 2.5);
   std::size_t changed_outside[2];
   for (const bool rim : {false, true}) {
-    p.rim_splits_in_region = rim;
+    p.rim_faces_in_region = rim;
     const RemeshResult r = remesh(m, p);
     ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
     std::vector<bool> in(r.mesh.num_faces(), false);

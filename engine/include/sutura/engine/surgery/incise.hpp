@@ -57,9 +57,9 @@ struct IncisionParams {
   double repair_below_deg = 20.0;
   /// How many of kRepairTargets are tried, in [0, 5].
   int repair_attempts = 5;
-  /// Every band remesh counts the faces just outside the band that it splits as the band's
-  /// (RemeshParams::rim_splits_in_region): their angles are raised too, and band_after and the
-  /// repair's decision include them.
+  /// Every band remesh counts the faces just outside the band that it changes (where it splits
+  /// or collapses a rim edge) as the band's (RemeshParams::rim_faces_in_region): their angles
+  /// are raised too, and band_after and the repair's decision include them.
   bool band_rim_in_band = true;
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).

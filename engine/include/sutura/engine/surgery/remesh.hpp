@@ -82,7 +82,7 @@ struct RemeshParams {
   /// the region's rim) counts as remeshed: the passes that raise angles reach it, and `after`
   /// and `region` include it. Off, such faces keep what the split or collapse made of them and
   /// are not reported. On only for incise's bands since session format 5.
-  bool rim_splits_in_region = false;
+  bool rim_faces_in_region = false;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
@@ -100,7 +100,7 @@ struct RemeshParams {
 struct RemeshResult {
   SurfaceMesh mesh;
   EditMaps maps;  ///< from the mesh passed in
-  /// Of the region (before) and of the faces it became (after), with rim_splits_in_region the
+  /// Of the region (before) and of the faces it became (after), with rim_faces_in_region the
   /// rim faces the remesh changed too (after only).
   MeshQuality before, after;
   std::vector<FaceId> region;  ///< faces of the new mesh that were remeshed (as `after`)
