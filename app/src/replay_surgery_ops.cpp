@@ -94,10 +94,13 @@ std::vector<bool> distorted_faces(const SceneObject& obj) {
 }
 
 // Constraints of a seam resampling: the object's held vertices, feature lines and distorted
-// faces, and the rest lengths by which a distorted face's seam edges are spaced.
-engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length) {
+// faces, and the rest lengths by which a distorted face's seam edges are spaced; the band
+// remeshed with `passes`.
+engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length,
+                                         const engine::RemeshPasses& passes) {
   engine::ResampleChainsParams p;
   p.target_edge_length = target_edge_length;
+  p.band_passes = passes;
   p.constrained_vertices = kept_vertices(obj);
   p.constrained_edges = feature_edges(obj);
   p.frozen_faces = distorted_faces(obj);
@@ -118,8 +121,9 @@ json resample_json(const engine::ResampleChainsResult& r, double spacing) {
 
 // Matches the seams of `pairs` on obj (engine::match_seams) and carries everything across;
 // the pairs come back as chains of the new mesh.
-json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs) {
-  const engine::MatchedSeams m = engine::match_seams(obj.mesh, pairs, seam_params(obj, 0.0));
+json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs,
+                        const engine::RemeshPasses& passes) {
+  const engine::MatchedSeams m = engine::match_seams(obj.mesh, pairs, seam_params(obj, 0.0, passes));
   engine::apply_edit(obj.mesh, obj.sim, m.edit.mesh, m.edit.maps);
   pairs = m.pairs;
   return resample_json(m.edit, *std::min_element(m.spacing.begin(), m.spacing.end()));
@@ -272,7 +276,7 @@ json Run::execute(const JoinOp& op) {
     }
   }
   json seams;
-  if (op.remesh) seams = match_object_seams(obj, pairs);
+  if (op.remesh) seams = match_object_seams(obj, pairs, op.seam_passes);
   engine::JoinParams params;
   if (op.remesh) params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
   params.placement = op.placement;
@@ -345,7 +349,7 @@ json Run::execute(const PatchOp& op) {
     params.right_segments = segments(first.lip_right, first.edge_right);
     // The lips' band is graded from the patch's spacing to the host's (a patch is cut no
     // finer than a fifth of its width, a fine host is finer than that).
-    engine::ResampleChainsParams rp = seam_params(obj, first.edge_length);
+    engine::ResampleChainsParams rp = seam_params(obj, first.edge_length, op.params.seam_passes);
     rp.grading = 1.5;
     const engine::ResampleChainsResult r = engine::resample_chains(
         obj.mesh,
@@ -384,6 +388,7 @@ json Run::execute(const PatchOp& op) {
     // resampled (docs/remeshing.md).
     const int patch_material = static_cast<int>(obj.sim.materials.size()) - 1;
     engine::RemeshParams p = engine::band_around(obj.mesh, r.seams, 2.0);
+    p.passes = op.params.seam_passes;
     std::erase_if(*p.region, [&](engine::FaceId f) {
       return obj.sim.face_material[f.index()] == patch_material;
     });
@@ -425,6 +430,7 @@ json Run::execute(const ResectOp& op) {
     std::vector<std::vector<engine::VertexId>> lines;
     for (const auto& l : cut_loops) lines.push_back(l.vertices);
     engine::RemeshParams p = engine::band_around(obj.mesh, lines, 2.0);
+    p.passes = op.remesh_passes;
     p.constrained_vertices.assign(obj.mesh.num_vertices(), false);
     for (const auto& l : cut_loops) p.constrained_vertices[l.vertices.front().index()] = true;
     engine::EditMaps maps;
@@ -458,7 +464,7 @@ json Run::execute(const ResectOp& op) {
                                               start_towards(obj.mesh, cut_loops[1], cb, u)}};
     engine::JoinParams params;
     if (op.remesh) {
-      j["seam_remesh"] = match_object_seams(obj, pairs);
+      j["seam_remesh"] = match_object_seams(obj, pairs, op.remesh_passes);
       params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
     }
     const engine::JoinResult r = engine::join(obj.mesh, pairs, params);
@@ -498,7 +504,7 @@ json Run::execute(const RemeshOp& op) {
   SceneObject& obj = edit(op.object);
   p.grading = op.grading;
   if (op.grading > 1.0) p.grading_curve = op.near;
-  p.iterations = op.iterations;
+  p.passes = op.passes;
   json j = remesh_object(obj, std::move(p));
   j["object"] = op.object;
   if (op.below_angle > 0.0) {

@@ -24,9 +24,11 @@ static_assert(sizeof(engine::UnloadParams) == 184, "UnloadParams changed: pin th
 static_assert(sizeof(engine::ContactParams) == 24, "ContactParams changed: pin the new field in contact_defaults");
 static_assert(sizeof(engine::AreaBarrierParams) == 16,
               "AreaBarrierParams changed: pin the new field in area_barrier_defaults");
-static_assert(sizeof(engine::IncisionParams) == 136,
+static_assert(sizeof(engine::RemeshPasses) == 24,
+              "RemeshPasses changed: pin the new field in remesh_passes_defaults");
+static_assert(sizeof(engine::IncisionParams) == 160,
               "IncisionParams changed: pin the new field in incision_defaults");
-static_assert(sizeof(engine::PatchPlanParams) == 64,
+static_assert(sizeof(engine::PatchPlanParams) == 88,
               "PatchPlanParams changed: pin the new field in patch_plan_defaults");
 static_assert(sizeof(engine::ResectionParams) == 16,
               "ResectionParams changed: pin the new field in resection_defaults");
@@ -143,6 +145,15 @@ engine::AreaBarrierParams area_barrier_defaults(int version) {
 
 // Surgery ops: each version's values; the versions differ where the table in
 // docs/session-format.md says so.
+engine::RemeshPasses remesh_passes_defaults(int version) {
+  check_version(version);
+  engine::RemeshPasses p;
+  p.iterations = 3;
+  p.raise_angles_below_deg = 25.0;
+  p.rim_faces_in_region = false;
+  return p;
+}
+
 engine::IncisionParams incision_defaults(int version) {
   check_version(version);
   engine::IncisionParams p;
@@ -155,7 +166,8 @@ engine::IncisionParams incision_defaults(int version) {
   p.grading = 1.0;
   p.repair_below_deg = version >= 4 ? 20.0 : 0.0;
   p.repair_attempts = version >= 5 ? 5 : 3;
-  p.band_rim_in_band = version >= 5;
+  p.band_passes = remesh_passes_defaults(version);
+  p.band_passes.rim_faces_in_region = version >= 5;
   p.constrained_vertices.clear();
   p.constrained_edges.clear();
   return p;
@@ -171,6 +183,7 @@ engine::PatchPlanParams patch_plan_defaults(int version) {
   p.min_edge_length = 0.0;
   p.max_distance = 1.0;
   p.left_segments = p.right_segments = 0;
+  p.seam_passes = remesh_passes_defaults(version);
   p.max_faces = 2.0e7;
   return p;
 }

@@ -39,6 +39,10 @@ engine::UnloadParams unload_defaults(int version);
 engine::ContactParams contact_defaults(int version);
 /// The collapse barrier of `"collapse_barrier": true`. Throws as above.
 engine::AreaBarrierParams area_barrier_defaults(int version);
+/// The passes of every remesh a surgery op makes: `remesh`'s (but its iterations, which the op
+/// gives), the seams' of `join`, `patch` and `resect`, the band's of `resect`; incise's bands as
+/// incision_defaults says. Throws as above.
+engine::RemeshPasses remesh_passes_defaults(int version);
 /// `incise`: every field but the constrained vertices and edges (which the replay gives).
 /// Throws as above.
 engine::IncisionParams incision_defaults(int version);

@@ -101,6 +101,7 @@ JoinOp parse_join(Fields& f) {
     }
   }
   op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
+  op.seam_passes = detail::remesh_passes_defaults(f.format_version());
   return op;
 }
 
@@ -173,6 +174,7 @@ ResectOp parse_resect(Fields& f) {
     f.fail("anastomosis", "needs two planes (two loose ends to suture)");
   if (auto a = f.optional_vec3("align")) op.align = vec(*a);
   op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
+  op.remesh_passes = detail::remesh_passes_defaults(f.format_version());
   return op;
 }
 
@@ -312,7 +314,8 @@ RemeshOp parse_remesh(Fields& f) {
   op.grading = f.optional_number("grading", 1.0);
   if (!(op.grading >= 1.0 && op.grading <= 10.0)) f.fail("grading", "must be in [1, 10]");
   if (op.grading > 1.0 && op.near.empty()) f.fail("grading", "needs near (the curve it grows from)");
-  op.iterations = f.optional_int("iterations", 3, 1, 100);
+  op.passes = detail::remesh_passes_defaults(f.format_version());
+  op.passes.iterations = f.optional_int("iterations", op.passes.iterations, 1, 100);
   return op;
 }
 

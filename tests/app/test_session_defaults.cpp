@@ -138,8 +138,16 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(i.grading, 1.0);
     EXPECT_EQ(i.repair_below_deg, v >= 4 ? 20.0 : 0.0);
     EXPECT_EQ(i.repair_attempts, v >= 5 ? 5 : 3);
-    EXPECT_EQ(i.band_rim_in_band, v >= 5);
+    EXPECT_EQ(i.band_passes.iterations, 3);
+    EXPECT_EQ(i.band_passes.raise_angles_below_deg, 25.0);
+    EXPECT_EQ(i.band_passes.rim_faces_in_region, v >= 5);
+    const engine::RemeshPasses passes = remesh_passes_defaults(v);
+    EXPECT_EQ(passes.iterations, 3);
+    EXPECT_EQ(passes.raise_angles_below_deg, 25.0);
+    EXPECT_FALSE(passes.rim_faces_in_region);
     const engine::PatchPlanParams p = patch_plan_defaults(v);
+    EXPECT_EQ(p.seam_passes.raise_angles_below_deg, passes.raise_angles_below_deg);
+    EXPECT_EQ(p.seam_passes.rim_faces_in_region, passes.rim_faces_in_region);
     EXPECT_EQ(p.shape, engine::PatchShape::Ellipse);
     EXPECT_EQ(p.width, 4.0);
     EXPECT_EQ(p.max_distance, 1.0);
@@ -148,15 +156,31 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(resection_defaults(v).sliver_fraction, 0.15);
   }
   EXPECT_THROW(incision_defaults(app::kSessionFormatVersion + 1), std::invalid_argument);
+  EXPECT_THROW(remesh_passes_defaults(0), std::invalid_argument);
   // Parsed: a line that gives nothing gets its file's version's values.
-  for (int v : {3, 4, 5}) {
+  for (int v = 3; v <= app::kSessionFormatVersion; ++v) {
+    SCOPED_TRACE(v);
     const app::Session s = parse_at(v, "{\"op\": \"incise\", \"object\": \"a\", \"points\": [[0, 0, 0], [1, 0, 0]]}\n"
                                        "{\"op\": \"resect\", \"object\": \"a\", \"planes\": [{\"origin\": [0, 0, 0], "
-                                       "\"normal\": [0, 0, 1]}], \"seed\": [0, 0, 1]}\n");
+                                       "\"normal\": [0, 0, 1]}], \"seed\": [0, 0, 1]}\n"
+                                       "{\"op\": \"remesh\", \"object\": \"a\", \"iterations\": 5}\n"
+                                       "{\"op\": \"join\", \"object\": \"a\", \"chains\": [{\"loop\": [0, 0, 0]}, "
+                                       "{\"loop\": [0, 0, 1]}]}\n"
+                                       "{\"op\": \"patch\", \"object\": \"a\", \"start\": [0, 0, 0], \"end\": [1, 0, 0]}\n");
+    const engine::RemeshPasses passes = remesh_passes_defaults(v);
+    EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).remesh_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    const auto& remesh = std::get<app::RemeshOp>(s.actions.at(2).op);
+    EXPECT_EQ(remesh.passes.iterations, 5);
+    EXPECT_EQ(remesh.passes.raise_angles_below_deg, passes.raise_angles_below_deg);
+    EXPECT_EQ(remesh.passes.rim_faces_in_region, passes.rim_faces_in_region);
+    EXPECT_EQ(std::get<app::JoinOp>(s.actions.at(3).op).seam_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    EXPECT_EQ(std::get<app::PatchOp>(s.actions.at(4).op).params.seam_passes.rim_faces_in_region,
+              passes.rim_faces_in_region);
     const auto& incise = std::get<app::InciseOp>(s.actions.at(0).op);
     EXPECT_EQ(incise.params.repair_below_deg, incision_defaults(v).repair_below_deg);
     EXPECT_EQ(incise.params.repair_attempts, incision_defaults(v).repair_attempts);
-    EXPECT_EQ(incise.params.band_rim_in_band, incision_defaults(v).band_rim_in_band);
+    EXPECT_EQ(incise.params.band_passes.rim_faces_in_region,
+              incision_defaults(v).band_passes.rim_faces_in_region);
     EXPECT_EQ(incise.params.band_width, 2.0);
     EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).params.radius, 10.0);
   }

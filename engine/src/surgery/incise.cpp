@@ -310,7 +310,7 @@ void remesh_band(const SurfaceMesh& mesh, const std::vector<FaceId>& host_faces,
   // The cut keeps an inner vertex, so a short slit cannot collapse to one edge (both lips
   // would be that edge, and the slit would close).
   rp.constrained_vertices[c[c.size() / 2].index()] = true;
-  rp.rim_faces_in_region = params.band_rim_in_band;
+  rp.passes = params.band_passes;
   CutRemesh best = remesh_keeping_cut(rp, refined, maps, c);
   result.remeshed = true;
   result.band_before = best.before;

@@ -102,6 +102,7 @@ PatchPlan plan_patch(const SurfaceMesh& host, const Vec3& start, const Vec3& end
     // Flat and unstressed, the patch is remeshed in its rest shape: exact.
     ResampleChainsParams rp;
     rp.target_edge_length = pp.target_edge_length;
+    rp.band_passes = params.seam_passes;
     const ResampleChainsResult r = resample_chains(
         plan.rest,
         {{plan.edge_left, equal_fractions(params.left_segments)},

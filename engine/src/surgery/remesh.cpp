@@ -212,12 +212,12 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   }
   if (!(std::isfinite(params.grading) && params.grading >= 1.0 && params.grading <= 10.0))
     throw InvalidArgument("grading must be in [1, 10], got " + std::to_string(params.grading));
-  if (!(params.raise_angles_below_deg >= 0.0 && params.raise_angles_below_deg <= 40.0))
+  if (!(params.passes.raise_angles_below_deg >= 0.0 && params.passes.raise_angles_below_deg <= 40.0))
     throw InvalidArgument("raise_angles_below_deg must be in [0, 40], got " +
-                          std::to_string(params.raise_angles_below_deg));
-  if (params.iterations < 1 || params.iterations > 100)
+                          std::to_string(params.passes.raise_angles_below_deg));
+  if (params.passes.iterations < 1 || params.passes.iterations > 100)
     throw InvalidArgument("iterations must be in [1, 100], got " +
-                          std::to_string(params.iterations));
+                          std::to_string(params.passes.iterations));
   if (!params.constrained_vertices.empty() && params.constrained_vertices.size() != nv)
     throw InvalidArgument("constrained_vertices: " + std::to_string(params.constrained_vertices.size()) +
                           " flags for " + std::to_string(nv) + " vertices");
@@ -233,9 +233,9 @@ RemeshResult remesh(const SurfaceMesh& mesh, const RemeshParams& params) {
   in.positions = &mesh.positions();
   in.faces = &mesh.faces();
   in.region = region;
-  in.iterations = params.iterations;
-  in.raise_angles_below_deg = params.raise_angles_below_deg;
-  in.rim_faces_in_region = params.rim_faces_in_region;
+  in.iterations = params.passes.iterations;
+  in.raise_angles_below_deg = params.passes.raise_angles_below_deg;
+  in.rim_faces_in_region = params.passes.rim_faces_in_region;
   in.constrained_vertices = params.constrained_vertices;
   in.constrained_vertices.resize(nv, false);
   // Ends and junctions of constrained polylines stay put: a vertex with other than two

@@ -117,6 +117,7 @@ ResampleChainsResult resample_chains(const SurfaceMesh& mesh, const std::vector<
       for (const VertexId v : line) curve.push_back(split.position(v));
   }
   RemeshParams rp = band_around(split, lines, band_width, params.target_edge_length);
+  rp.passes = params.band_passes;
   std::vector<bool> frozen_vertex(split.num_vertices(), false);
   if (!params.frozen_faces.empty()) {
     if (params.frozen_faces.size() != mesh.num_faces())

@@ -373,7 +373,7 @@ TEST(Incise, MoreRandomSmoothCurvesOnTheArchCutCleanlyWithTheBandRemesh) {
 IncisionParams repair_settings(int attempts = 3, bool rim = false) {
   IncisionParams p;
   p.repair_attempts = attempts;
-  p.band_rim_in_band = rim;
+  p.band_passes.rim_faces_in_region = rim;
   return p;
 }
 

@@ -125,7 +125,7 @@ TEST(Remesh, FacesChangedAtTheRegionsRimCountAsRemeshed) {
   p.region = faces_near_polyline(m, {Vec3(15, 0, 0), Vec3(25, 0, 0)}, 2.5);
   std::size_t changed_outside[2];
   for (const bool rim : {false, true}) {
-    p.rim_faces_in_region = rim;
+    p.passes.rim_faces_in_region = rim;
     const RemeshResult r = remesh(m, p);
     ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
     std::vector<bool> in(r.mesh.num_faces(), false);
@@ -157,7 +157,7 @@ TEST(Remesh, CornersOfThinFacesMoveAndTheSmallestAngleNeverFalls) {
   p.constrained_vertices[a.index()] = p.constrained_vertices[b.index()] = true;
   double smallest[2];
   for (const double raise : {0.0, 25.0}) {
-    p.raise_angles_below_deg = raise;
+    p.passes.raise_angles_below_deg = raise;
     const RemeshResult r = remesh(m, p);
     ASSERT_TRUE(r.mesh.validate().ok()) << r.mesh.validate().summary();
     smallest[raise > 0.0] = r.after.min_angle_deg;
@@ -370,14 +370,14 @@ TEST(Remesh, BadInputIsRefusedNamingTheField) {
   p.grading = 0.5;
   EXPECT_NE(message(p).find("grading"), std::string::npos);
   p.grading = 1.0;
-  p.iterations = 0;
+  p.passes.iterations = 0;
   EXPECT_NE(message(p).find("iterations"), std::string::npos);
-  p.iterations = 3;
-  p.raise_angles_below_deg = -1.0;
+  p.passes.iterations = 3;
+  p.passes.raise_angles_below_deg = -1.0;
   EXPECT_NE(message(p).find("raise_angles_below_deg"), std::string::npos);
-  p.raise_angles_below_deg = std::nan("");
+  p.passes.raise_angles_below_deg = std::nan("");
   EXPECT_NE(message(p).find("raise_angles_below_deg"), std::string::npos);
-  p.raise_angles_below_deg = 25.0;
+  p.passes.raise_angles_below_deg = 25.0;
   p.constrained_edges = {{VertexId(0), VertexId(30)}};
   EXPECT_NE(message(p).find("constrained_edges"), std::string::npos);
   p.constrained_edges.clear();

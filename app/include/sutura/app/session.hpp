@@ -32,6 +32,7 @@
 #include "sutura/engine/surgery/join.hpp"
 #include "sutura/engine/surgery/patch_plan.hpp"
 #include "sutura/engine/surgery/relaxation.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 #include "sutura/engine/surgery/resect.hpp"
 
 namespace sutura::app {
@@ -338,6 +339,7 @@ struct JoinOp {
   engine::SuturePlacement placement = engine::SuturePlacement::Mean;
   /// Match the seams before joining (engine::match_seams; format 3; before: false).
   bool remesh = true;
+  engine::RemeshPasses seam_passes;  ///< of that match, by the session's format version
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
@@ -371,6 +373,7 @@ struct ResectOp {
   /// Remesh the band around the cut, and match the anastomosis's loops (format 3; before:
   /// false).
   bool remesh = true;
+  engine::RemeshPasses remesh_passes;  ///< of both, by the session's format version
 };
 
 /// Remeshes a region of an object (engine::remesh): its sutures, material borders, open
@@ -388,7 +391,8 @@ struct RemeshOp {
   double radius = 0.0;
   double target_edge_length = 0.0;  ///< mm; 0 = the region's mean edge length
   double grading = 1.0;             ///< >= 1: finest at `near`, growing by this per band
-  int iterations = 3;
+  /// `iterations` from the op, the other passes by the session's format version.
+  engine::RemeshPasses passes;
 };
 
 /// Cross-section of an object by a plane, before and after, recorded under `name`.

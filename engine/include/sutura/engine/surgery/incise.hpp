@@ -57,10 +57,11 @@ struct IncisionParams {
   double repair_below_deg = 20.0;
   /// How many of kRepairTargets are tried, in [0, 5].
   int repair_attempts = 5;
-  /// Every band remesh counts the faces just outside the band that it changes (where it splits
-  /// or collapses a rim edge) as the band's (RemeshParams::rim_faces_in_region): their angles
-  /// are raised too, and band_after and the repair's decision include them.
-  bool band_rim_in_band = true;
+  /// The passes of every band remesh. With rim_faces_in_region (the default here) the faces
+  /// just outside the band that a remesh changes (where it splits or collapses a rim edge) are
+  /// the band's: their angles are raised too, and band_after and the repair's decision include
+  /// them.
+  RemeshPasses band_passes{3, 25.0, true};
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;
@@ -85,7 +86,7 @@ struct IncisionResult {
   double length = 0.0;        ///< mm, along the cut
   bool remeshed = false;      ///< the band around the cut was remeshed
   /// Of the band, when remeshed; band_after includes the faces just outside it that its remesh
-  /// changed when IncisionParams::band_rim_in_band is set (band_before does not).
+  /// changed when band_passes.rim_faces_in_region is set (band_before does not).
   MeshQuality band_before, band_after;
   /// The kRepairTargets fraction whose remesh was kept (IncisionParams::repair_below_deg);
   /// 0: the first remesh was kept.

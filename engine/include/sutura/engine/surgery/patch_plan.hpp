@@ -2,6 +2,7 @@
 // Placing a patch over an incision and choosing which of its edges meet which lip.
 #include "sutura/engine/generators.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
+#include "sutura/engine/surgery/remesh.hpp"
 
 namespace sutura::engine {
 
@@ -25,6 +26,8 @@ struct PatchPlanParams {
   /// patch is laid out, so that each edge pairs one to one with a lip resampled to the same
   /// count. 0: the edges as make_patch cuts them (the join pairs them by arc length).
   int left_segments = 0, right_segments = 0;
+  /// The passes of that band remesh (RemeshParams::passes).
+  RemeshPasses seam_passes;
   /// The patch is refused (InvalidArgument) when it would have more faces (PatchParams).
   double max_faces = 2.0e7;
 };

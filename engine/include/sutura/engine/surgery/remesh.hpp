@@ -56,19 +56,11 @@ std::vector<FaceId> faces_near_polyline(const SurfaceMesh& mesh, const std::vect
 std::vector<FaceId> faces_near_small_angles(const SurfaceMesh& mesh, double below_deg,
                                             double radius);
 
-struct RemeshParams {
-  /// mm, > 0: edge length near `grading_curve` (everywhere without one).
-  double target_edge_length = 0.0;
-  /// Faces to remesh (any order); none given = the whole surface, an empty list is an error.
-  std::optional<std::vector<FaceId>> region;
-  /// >= 1: with a curve, the edge length changes by this factor per band of the current
-  /// length away from the curve towards the region's own mean edge length (grows where the
-  /// region is coarser, shrinks where it is finer; nested bands, the outer ones remeshed
-  /// first). 1 = uniform.
-  double grading = 1.0;
-  /// Polyline (mm) near which the mesh is finest; empty = uniform.
-  std::vector<Vec3> grading_curve;
-  int iterations = 3;  ///< >= 1, CGAL iterations per band
+/// How a remesh works its region, apart from where and how fine. Every remeshed mesh depends
+/// on these, so a session pins them per format version (app/src/session_defaults.cpp) and a
+/// default changed here changes no recorded session.
+struct RemeshPasses {
+  int iterations = 3;  ///< in [1, 100], CGAL iterations per band
   /// Degrees, in [0, 40]: after the bands, a free corner (not fixed, on no constrained
   /// polyline nor open boundary, all its faces in the region) of a remeshed face with a
   /// smaller angle is moved on the surface to where a local search finds the smallest angle
@@ -81,8 +73,23 @@ struct RemeshParams {
   /// A face outside the region that the remesh changes (where it splits or collapses an edge of
   /// the region's rim) counts as remeshed: the passes that raise angles reach it, and `after`
   /// and `region` include it. Off, such faces keep what the split or collapse made of them and
-  /// are not reported. On only for incise's bands since session format 5.
+  /// are not reported. Sessions: on for incise's bands since format 5.
   bool rim_faces_in_region = false;
+};
+
+struct RemeshParams {
+  /// mm, > 0: edge length near `grading_curve` (everywhere without one).
+  double target_edge_length = 0.0;
+  /// Faces to remesh (any order); none given = the whole surface, an empty list is an error.
+  std::optional<std::vector<FaceId>> region;
+  /// >= 1: with a curve, the edge length changes by this factor per band of the current
+  /// length away from the curve towards the region's own mean edge length (grows where the
+  /// region is coarser, shrinks where it is finer; nested bands, the outer ones remeshed
+  /// first). 1 = uniform.
+  double grading = 1.0;
+  /// Polyline (mm) near which the mesh is finest; empty = uniform.
+  std::vector<Vec3> grading_curve;
+  RemeshPasses passes;
   /// Edges kept as polylines (their vertices may be added along them or collapsed along them,
   /// never moved off them): lips, seams, feature lines. Open boundary edges always are.
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
@@ -100,8 +107,8 @@ struct RemeshParams {
 struct RemeshResult {
   SurfaceMesh mesh;
   EditMaps maps;  ///< from the mesh passed in
-  /// Of the region (before) and of the faces it became (after), with rim_faces_in_region the
-  /// rim faces the remesh changed too (after only).
+  /// Of the region (before) and of the faces it became (after), with
+  /// passes.rim_faces_in_region the rim faces the remesh changed too (after only).
   MeshQuality before, after;
   std::vector<FaceId> region;  ///< faces of the new mesh that were remeshed (as `after`)
   /// The constrained edges of the new mesh (sub-edges of the given ones), as vertex pairs.

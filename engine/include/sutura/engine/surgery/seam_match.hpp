@@ -39,6 +39,8 @@ struct ResampleChainsParams {
   /// the order given, are the grading curve: give chains that continue one another (the two
   /// lips of an incision).
   double grading = 1.0;
+  /// The band remesh's passes (RemeshParams::passes).
+  RemeshPasses band_passes;
   /// Kept by the remesh as they are (see RemeshParams): held vertices, earlier seams.
   std::vector<bool> constrained_vertices;
   std::vector<std::pair<VertexId, VertexId>> constrained_edges;
