@@ -132,6 +132,28 @@ json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs
 // Undo depth, whatever the memory: a GUI's history need not be longer.
 constexpr std::size_t kMaxUndo = 64;
 
+// An incision whose remeshed band keeps a smaller angle (degrees) gets a warning: the limit
+// docs/remeshing.md holds the remeshed meshes to.
+constexpr double kThinBandDeg = 20.0;
+
+// The warning for an incision whose band is thin (empty when it is not): where the cut meets
+// an open end at a corner that small, the drawing forces it; elsewhere, a later `remesh` with
+// `below_angle` can lift it.
+std::string thin_band_warning(const engine::IncisionResult& r) {
+  if (!r.remeshed || !(r.band_after.min_angle_deg < kThinBandDeg)) return {};
+  std::ostringstream w;
+  w << std::fixed << std::setprecision(1);
+  if (r.band_after.min_angle_deg >= r.open_end_corner_deg - 1e-6) {
+    w << "the cut meets the open end at " << r.open_end_corner_deg
+      << " degrees: the triangle in that corner can have no larger angle while the lips follow the drawn "
+         "curve; draw the cut onto the open end more steeply, or end it before";
+  } else {
+    w << "the band around the cut keeps an angle of " << r.band_after.min_angle_deg << " degrees (below "
+      << kThinBandDeg << "); a remesh with below_angle can lift it";
+  }
+  return w.str();
+}
+
 // A suture whose one side is longer than this many times the other gets a warning.
 constexpr double kUnevenSutureRatio = 2.0;
 
@@ -259,6 +281,8 @@ json Run::execute(const InciseOp& op) {
             {"ends_on_boundary", r.ends_on_boundary}};
   if (r.remeshed) j["remesh"] = {{"before", mesh_quality_json(r.band_before)}, {"after", mesh_quality_json(r.band_after)}};
   if (r.band_repair_fraction > 0.0) j["remesh"]["repaired_at"] = r.band_repair_fraction;
+  if (r.open_end_corner_deg < 180.0) j["open_end_corner_deg"] = r.open_end_corner_deg;
+  if (const std::string w = thin_band_warning(r); !w.empty()) j["warning"] = w;
   j["mesh"] = mesh_counts(obj);
   return j;
 }

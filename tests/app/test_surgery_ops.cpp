@@ -461,6 +461,34 @@ TEST(SurgeryOps, TheSessionVersionDecidesWhetherFacesSplitAtTheBandsRimAreTheBan
   EXPECT_GE(whole(5, "rim_v5"), 20.0);
 }
 
+// An incision's report says where its band is thin and why: a cut drawn onto a strip's edge at
+// 15 degrees (the corner forces it), and a cut 0.3 mm from a tube's open end in version 3 (no
+// repair: a later remesh can lift it).
+TEST(SurgeryOps, AThinIncisionBandIsReportedWithItsCause) {
+  std::string points;
+  for (int i = 0; i <= 8; ++i)
+    points += (i ? ", [" : "[") + std::to_string(7.3 + i * std::cos(15.0 * M_PI / 180.0)) + ", " +
+              std::to_string(-5.0 + i * std::sin(15.0 * M_PI / 180.0)) + ", 0]";
+  const nlohmann::json grazing = action(
+      run("{\"format\": \"sutura-session\", \"version\": 5}\n"
+          "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 20, \"width\": 10, "
+          "\"segments_length\": 20, \"segments_width\": 10}\n"
+          "{\"op\": \"incise\", \"object\": \"s\", \"points\": [" + points + "]}\n",
+          "grazing_cut"),
+      "incise");
+  // The points are written to 1e-6 mm over 1 mm pieces: the angle is 15 degrees to about 1e-4.
+  EXPECT_NEAR(grazing["open_end_corner_deg"].get<double>(), 15.0, 1e-4);
+  ASSERT_TRUE(grazing.contains("warning"));
+  EXPECT_NE(grazing["warning"].get<std::string>().find("meets the open end at 15.0 degrees"), std::string::npos)
+      << grazing["warning"];
+  const nlohmann::json near_end = action(run(kHeader3 + kTube + incise_around(0.1, 0.25, 7, 0.3), "near_end_v3"), "incise");
+  ASSERT_TRUE(near_end.contains("warning"));
+  EXPECT_NE(near_end["warning"].get<std::string>().find("keeps an angle of"), std::string::npos) << near_end["warning"];
+  EXPECT_FALSE(near_end.contains("open_end_corner_deg"));
+  // A band of 20 degrees or more has no warning.
+  EXPECT_FALSE(action(run(kHeader3 + kTube + incise_around(0.1, 0.25, 7, 8.0), "inside_v3"), "incise").contains("warning"));
+}
+
 // Two strips whose facing edges have 4 and 7 pieces, 0.01 mm apart, sutured.
 const std::string kStripsJoin =
     "{\"op\": \"generate\", \"object\": \"s\", \"shape\": \"strip\", \"length\": 10, \"width\": 4, "

@@ -321,7 +321,8 @@ struct GuiState {
 
   void info(std::string text);
   void error(std::string text);
-  /// Records and runs `op` now (SessionController::run); reports the outcome as a message.
+  /// Records and runs `op` now (SessionController::run); reports the outcome as a message, and
+  /// its warning, if any, as an error that stays until dismissed.
   /// True on success. (A snapshot op renders off-screen on the op thread: the window's GL
   /// context stays current on this one; only destroying a controller can take it away.)
   bool perform(const nlohmann::json& op, const std::string& done_text = {});

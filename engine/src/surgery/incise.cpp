@@ -541,6 +541,11 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   result.snapped_points = snapped;
   for (std::size_t i = 0; i < m; ++i)
     result.length += (result.mesh.position(c[i + 1]) - result.mesh.position(c[i])).norm();
+  for (const std::size_t i : {std::size_t(0), m}) {
+    if (!refined.is_boundary(c[i])) continue;
+    for (const VertexId v : {result.left[i], result.right[i]})
+      result.open_end_corner_deg = std::min(result.open_end_corner_deg, vertex_angle_sum_deg(result.mesh, v));
+  }
   return result;
 }
 

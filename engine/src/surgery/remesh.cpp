@@ -80,6 +80,17 @@ double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c) {
   return std::min({angle_deg(b - a, c - a), angle_deg(c - b, a - b), angle_deg(a - c, b - c)});
 }
 
+double vertex_angle_sum_deg(const SurfaceMesh& mesh, VertexId v) {
+  double sum = 0.0;
+  for (const FaceId f : mesh.vertex_faces(v)) {
+    const auto c = mesh.face_vertices(f);
+    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    const Vec3 p = mesh.position(c[std::size_t(k)]);
+    sum += angle_deg(mesh.position(c[std::size_t((k + 1) % 3)]) - p, mesh.position(c[std::size_t((k + 2) % 3)]) - p);
+  }
+  return sum;
+}
+
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces) {
   const std::vector<FaceId> set = faces.empty() ? all_faces(mesh) : faces;
   MeshQuality q = triangle_quality(set.size(), [&](std::size_t i, Vec3* p) {

@@ -311,16 +311,7 @@ std::vector<double> common_fractions(const SurfaceMesh& mesh, const SuturePair& 
 // The boundary's turn at boundary vertex v in the surface, degrees: |180 - the sum of its
 // faces' angles at v| (0 on a straight run, about 180 at the tip of a slit). O(valence).
 double boundary_turn_deg(const SurfaceMesh& mesh, VertexId v) {
-  double sum = 0.0;
-  for (const FaceId f : mesh.vertex_faces(v)) {
-    const auto c = mesh.face_vertices(f);
-    const int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-    const Vec3 p = mesh.position(c[std::size_t(k)]);
-    const Vec3 e1 = mesh.position(c[std::size_t((k + 1) % 3)]) - p;
-    const Vec3 e2 = mesh.position(c[std::size_t((k + 2) % 3)]) - p;
-    sum += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
-  }
-  return std::abs(180.0 - sum * 180.0 / std::numbers::pi);
+  return std::abs(180.0 - vertex_angle_sum_deg(mesh, v));
 }
 
 }  // namespace

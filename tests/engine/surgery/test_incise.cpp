@@ -112,6 +112,24 @@ TEST(Incise, MapsCarryARestStateThatLeavesTheCutMeshStressFree) {
   EXPECT_LT(g, 1e-10);
 }
 
+// A cut drawn onto the straight edge of a flat strip at 15 degrees: the lip on the acute side
+// makes a corner of 15 degrees there, exactly (the edge stays straight whatever the remesh does
+// to its vertices), and no face in it can do better; the band's smallest angle is that corner.
+TEST(Incise, ReportsTheCornerWhereTheCutMeetsAnOpenEnd) {
+  const double a = 15.0 * M_PI / 180.0;
+  std::vector<Vec3> points;
+  for (int i = 0; i <= 8; ++i) points.emplace_back(7.3 + i * std::cos(a), -5.0 + i * std::sin(a), 0.0);
+  const IncisionResult r = incise(strip(), points);
+  ASSERT_TRUE(r.mesh.validate().ok());
+  ASSERT_TRUE(r.starts_on_boundary);
+  EXPECT_NEAR(r.open_end_corner_deg, 15.0, 1e-9);
+  EXPECT_NEAR(vertex_angle_sum_deg(r.mesh, r.left.front()) + vertex_angle_sum_deg(r.mesh, r.right.front()), 180.0,
+              1e-9);
+  EXPECT_LE(r.band_after.min_angle_deg, 15.0 + 1e-9);
+  // An incision that stays inside has no such corner.
+  EXPECT_EQ(incise(strip(), {Vec3(6, 0, 0), Vec3(12, 1, 0)}).open_end_corner_deg, 180.0);
+}
+
 TEST(Incise, FromTheBoundaryOpensTheLoop) {
   const SurfaceMesh tube = make_tube({4.0, 20.0, 24, 20});
   const IncisionResult r = incise(tube, {Vec3(4, 0, 0), Vec3(4, 0, 8.2)});
@@ -278,30 +296,6 @@ double lips_from_trace(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   return worst;
 }
 
-// The smallest corner (degrees) where a lip of `r` ends on an open boundary: the sum of the
-// angles of the faces at that end, which no triangulation of the lips and the boundary can
-// beat (180 when no lip ends on the boundary).
-double smallest_open_end_corner_deg(const IncisionResult& r) {
-  std::vector<VertexId> ends;
-  if (r.starts_on_boundary) ends.insert(ends.end(), {r.left.front(), r.right.front()});
-  if (r.ends_on_boundary) ends.insert(ends.end(), {r.left.back(), r.right.back()});
-  double smallest = 180.0;
-  for (const VertexId v : ends) {
-    double sum = 0.0;
-    for (std::size_t f = 0; f < r.mesh.num_faces(); ++f) {
-      const auto t = r.mesh.face_vertices(FaceId(static_cast<std::int32_t>(f)));
-      for (int k = 0; k < 3; ++k)
-        if (t[k] == v) {
-          const Vec3 a = r.mesh.position(t[(k + 1) % 3]) - r.mesh.position(v);
-          const Vec3 b = r.mesh.position(t[(k + 2) % 3]) - r.mesh.position(v);
-          sum += std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / M_PI;
-        }
-    }
-    smallest = std::min(smallest, sum);
-  }
-  return smallest;
-}
-
 SurfaceMesh coarse_arch() { return load_mesh(std::string(SUTURA_ASSETS_DIR) + "/anatomy/coarse/aorta.ply"); }
 
 // Random smooth curves on the bundled coarse arch, drawn as a surgeon's drag gives them (2 to
@@ -342,7 +336,7 @@ void cut_random_smooth_curves_on_the_arch(std::uint32_t seed) {
     // Below 20 degrees only where the drawing forces it: at a corner where the cut meets an
     // open end at a smaller angle (no triangle there can have a larger one).
     if (r.band_after.min_angle_deg < 20.0) {
-      const double corner = smallest_open_end_corner_deg(r);
+      const double corner = r.open_end_corner_deg;
       EXPECT_GE(r.band_after.min_angle_deg, std::min(20.0, corner) - 1e-6)
           << "a band below 20 degrees that no corner of the drawing forces (the corner: " << corner << ")";
       forced += r.band_after.min_angle_deg >= corner - 1e-6;

@@ -91,6 +91,11 @@ struct IncisionResult {
   /// The kRepairTargets fraction whose remesh was kept (IncisionParams::repair_below_deg);
   /// 0: the first remesh was kept.
   double band_repair_fraction = 0.0;
+  /// Degrees: the smallest corner where a lip ends on the open boundary (the sum of the
+  /// angles of the faces at that lip end), 180 when no lip does. A cut drawn onto an open end
+  /// at a grazing angle makes this small, and no face in that corner can have a larger angle
+  /// while the lips stay on the drawn curve.
+  double open_end_corner_deg = 180.0;
 };
 
 /// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the

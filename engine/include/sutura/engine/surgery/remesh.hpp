@@ -31,6 +31,10 @@ struct MeshQuality {
 /// Smallest interior angle of the triangle (a, b, c), degrees (0 for a degenerate one). O(1).
 double smallest_angle_deg(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Sum of the angles at v of its faces, degrees: 360 inside a flat region; on an open boundary,
+/// the corner the boundary makes there (180 on a straight run). O(valence).
+double vertex_angle_sum_deg(const SurfaceMesh& mesh, VertexId v);
+
 /// Quality of `faces` of `mesh` (all faces when empty). Cost O(F log F).
 MeshQuality mesh_quality(const SurfaceMesh& mesh, const std::vector<FaceId>& faces = {});
 
