@@ -225,9 +225,7 @@ json Run::execute(const LoadOp& op) {
     if (room == 0)
       throw std::runtime_error("prepare: no faces left of the limit of " + std::to_string(l.faces_in_all) +
                                " in all (--max-faces-in-all raises it)");
-    engine::PrepareParams p;
-    p.edge_length = op.prepare->edge_length;
-    p.smoothing_iterations = op.prepare->smoothing;
+    engine::PrepareParams p = op.prepare->params;
     p.max_faces = std::max<std::size_t>(1, std::min(l.faces_per_object, room));
     engine::PrepareResult r = engine::prepare_vessel(mesh, p);
     for (const auto& e : r.ends) prepared_ends.push_back(e.end);

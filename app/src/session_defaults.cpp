@@ -30,6 +30,8 @@ static_assert(sizeof(engine::IncisionParams) == 160,
               "IncisionParams changed: pin the new field in incision_defaults");
 static_assert(sizeof(engine::PatchPlanParams) == 88,
               "PatchPlanParams changed: pin the new field in patch_plan_defaults");
+static_assert(sizeof(engine::PrepareParams) == 96,
+              "PrepareParams changed: pin the new field in prepare_defaults");
 static_assert(sizeof(engine::ResectionParams) == 16,
               "ResectionParams changed: pin the new field in resection_defaults");
 #endif
@@ -185,6 +187,22 @@ engine::PatchPlanParams patch_plan_defaults(int version) {
   p.left_segments = p.right_segments = 0;
   p.seam_passes = remesh_passes_defaults(version);
   p.max_faces = 2.0e7;
+  return p;
+}
+
+engine::PrepareParams prepare_defaults(int version) {
+  check_version(version);
+  engine::PrepareParams p;
+  p.clips.clear();
+  p.edge_length.reset();
+  p.keep_caps = false;
+  p.smoothing_iterations = 10;
+  p.smoothing_bound = 0.02;
+  p.remesh_iterations = 5;
+  p.drop_area_fraction = 0.05;
+  p.crease_angle_deg = 45.0;
+  p.coarsen_in_halves_from = 200'000;
+  p.max_faces = 2'000'000;
   return p;
 }
 

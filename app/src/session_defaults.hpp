@@ -13,6 +13,7 @@
 // keep_going, a runtime hook, is left empty (the replay sets it). energy_reference and
 // force_reference are pinned to 0 (no floor on the solver's scales), which is what a session
 // means; only a relaxation raises them, inside the engine.
+#include "sutura/engine/patient/prepare.hpp"
 #include "sutura/engine/sim/area_barrier.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/sim/dynamics.hpp"
@@ -50,6 +51,8 @@ engine::IncisionParams incision_defaults(int version);
 /// the replay gives); min_edge_length, a fifth of the width since version 2, is set by the
 /// parser from the width it reads. Throws as above.
 engine::PatchPlanParams patch_plan_defaults(int version);
+/// `load`'s `prepare`: every field (the replay sets max_faces from its limits). Throws as above.
+engine::PrepareParams prepare_defaults(int version);
 /// `resect`. Throws as above.
 engine::ResectionParams resection_defaults(int version);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "session_defaults.hpp"
 #include "session_ops.hpp"
 
 namespace sutura::app::detail {
@@ -68,8 +69,9 @@ LoadOp parse_load(Fields& f, const std::filesystem::path& session_file) {
     f.fail("weld_tolerance", "must be between 0 and 0.01 (fraction of the bounding-box diagonal)");
   if (auto p = f.optional_object("prepare")) {
     PrepareSpec spec;
-    if (p->has("edge_length")) spec.edge_length = p->optional_positive("edge_length", 1.0);
-    spec.smoothing = p->optional_int("smoothing", spec.smoothing, 0, 100);
+    spec.params = detail::prepare_defaults(f.format_version());
+    if (p->has("edge_length")) spec.params.edge_length = p->optional_positive("edge_length", 1.0);
+    spec.params.smoothing_iterations = p->optional_int("smoothing", spec.params.smoothing_iterations, 0, 100);
     p->finish();
     op.prepare = spec;
   }

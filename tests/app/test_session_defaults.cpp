@@ -185,3 +185,29 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).params.radius, 10.0);
   }
 }
+
+// A load's prepare starts from the version's settings, not the engine's; the op gives the edge
+// length and the smoothing.
+TEST(SessionDefaults, PrepareSettingsArePinnedPerVersion) {
+  for (int v = 1; v <= app::kSessionFormatVersion; ++v) {
+    SCOPED_TRACE(v);
+    const engine::PrepareParams p = prepare_defaults(v);
+    EXPECT_TRUE(p.clips.empty());
+    EXPECT_FALSE(p.edge_length.has_value());
+    EXPECT_FALSE(p.keep_caps);
+    EXPECT_EQ(p.smoothing_iterations, 10);
+    EXPECT_EQ(p.smoothing_bound, 0.02);
+    EXPECT_EQ(p.remesh_iterations, 5);
+    EXPECT_EQ(p.drop_area_fraction, 0.05);
+    EXPECT_EQ(p.crease_angle_deg, 45.0);
+    EXPECT_EQ(p.coarsen_in_halves_from, 200'000u);
+    const app::Session s = parse_at(v, "{\"op\": \"load\", \"object\": \"a\", \"file\": \"a.stl\", "
+                                       "\"prepare\": {\"edge_length\": 0.5, \"smoothing\": 3}}\n");
+    const engine::PrepareParams& parsed = std::get<app::LoadOp>(s.actions.at(0).op).prepare->params;
+    EXPECT_EQ(parsed.edge_length.value_or(0.0), 0.5);
+    EXPECT_EQ(parsed.smoothing_iterations, 3);
+    EXPECT_EQ(parsed.remesh_iterations, p.remesh_iterations);
+    EXPECT_EQ(parsed.coarsen_in_halves_from, p.coarsen_in_halves_from);
+  }
+  EXPECT_THROW(prepare_defaults(app::kSessionFormatVersion + 1), std::invalid_argument);
+}

@@ -26,6 +26,7 @@
 #include "sutura/engine/sim/unload.hpp"
 #include "sutura/engine/measure/cross_section.hpp"
 #include "sutura/engine/measure/z_score.hpp"
+#include "sutura/engine/patient/prepare.hpp"
 #include "sutura/engine/sim/contact.hpp"
 #include "sutura/engine/surgery/boundary_chain.hpp"
 #include "sutura/engine/surgery/incise.hpp"
@@ -86,12 +87,12 @@ struct GenerateOp {
 /// Loads an object from a mesh file (path relative to the session file).
 /// A load's `prepare`: the file is a segmentation export, made a vessel to plan on as it is
 /// loaded (engine::prepare_vessel: caps opened as ends, smoothed, remeshed; the same as
-/// `sutura prepare`). Its defaults are the session format's own (not read from the engine's),
-/// so a recording names what it asked for; how prepare derives the rest (the crease angle, 16
-/// edges around the narrowest end) is the engine's.
+/// `sutura prepare`). Every setting is the session format version's (detail::prepare_defaults),
+/// not the engine's own defaults, but for `edge_length` (mm; none: 16 edges around the
+/// narrowest end) and `smoothing_iterations` (0 to 100), which the op gives; the replay sets
+/// the face limit.
 struct PrepareSpec {
-  std::optional<double> edge_length;  ///< mm; none: 16 edges around the narrowest end
-  int smoothing = 10;                 ///< Taubin iterations, 0 to 100
+  engine::PrepareParams params;
 };
 
 struct LoadOp {
