@@ -94,13 +94,11 @@ std::vector<bool> distorted_faces(const SceneObject& obj) {
 }
 
 // Constraints of a seam resampling: the object's held vertices, feature lines and distorted
-// faces, and the rest lengths by which a distorted face's seam edges are spaced; the band
-// remeshed with `passes`.
+// faces, and the rest lengths by which a distorted face's seam edges are spaced, added to the
+// op's settings `base`.
 engine::ResampleChainsParams seam_params(const SceneObject& obj, double target_edge_length,
-                                         const engine::RemeshPasses& passes) {
-  engine::ResampleChainsParams p;
+                                         engine::ResampleChainsParams p) {
   p.target_edge_length = target_edge_length;
-  p.band_passes = passes;
   p.constrained_vertices = kept_vertices(obj);
   p.constrained_edges = feature_edges(obj);
   p.frozen_faces = distorted_faces(obj);
@@ -122,8 +120,8 @@ json resample_json(const engine::ResampleChainsResult& r, double spacing) {
 // Matches the seams of `pairs` on obj (engine::match_seams) and carries everything across;
 // the pairs come back as chains of the new mesh.
 json match_object_seams(SceneObject& obj, std::vector<engine::SuturePair>& pairs,
-                        const engine::RemeshPasses& passes) {
-  const engine::MatchedSeams m = engine::match_seams(obj.mesh, pairs, seam_params(obj, 0.0, passes));
+                        const engine::ResampleChainsParams& base) {
+  const engine::MatchedSeams m = engine::match_seams(obj.mesh, pairs, seam_params(obj, 0.0, base));
   engine::apply_edit(obj.mesh, obj.sim, m.edit.mesh, m.edit.maps);
   pairs = m.pairs;
   return resample_json(m.edit, *std::min_element(m.spacing.begin(), m.spacing.end()));
@@ -136,21 +134,25 @@ constexpr std::size_t kMaxUndo = 64;
 // docs/remeshing.md holds the remeshed meshes to.
 constexpr double kThinBandDeg = 20.0;
 
-// The warning for an incision whose band is thin (empty when it is not): where the cut meets
-// an open end at a corner that small, the drawing forces it; elsewhere, a later `remesh` with
-// `below_angle` can lift it.
+// The warning for an incision whose band is thin (empty when it is not), with its cause: a
+// corner below the limit where the cut meets an open end, which no triangle in it can exceed
+// (the drawing forces it), or faces a later `remesh` with `below_angle` can lift (up to that
+// corner, when there is one).
 std::string thin_band_warning(const engine::IncisionResult& r) {
   if (!r.remeshed || !(r.band_after.min_angle_deg < kThinBandDeg)) return {};
   std::ostringstream w;
   w << std::fixed << std::setprecision(1);
-  if (r.band_after.min_angle_deg >= r.open_end_corner_deg - 1e-6) {
-    w << "the cut meets the open end at " << r.open_end_corner_deg
+  const std::optional<double> corner = r.open_end_corner_deg;
+  const bool sharp_corner = corner && *corner < kThinBandDeg;
+  const bool only_the_corner = sharp_corner && r.band_after.min_angle_deg >= *corner - 1e-6;
+  if (!only_the_corner)
+    w << "the band around the cut keeps an angle of " << r.band_after.min_angle_deg << " degrees (below "
+      << kThinBandDeg << "); a remesh with below_angle can lift it" << (sharp_corner ? ", up to the corner below" : "")
+      << (sharp_corner ? "; " : "");
+  if (sharp_corner)
+    w << "the cut meets the open end at " << *corner
       << " degrees: the triangle in that corner can have no larger angle while the lips follow the drawn "
          "curve; draw the cut onto the open end more steeply, or end it before";
-  } else {
-    w << "the band around the cut keeps an angle of " << r.band_after.min_angle_deg << " degrees (below "
-      << kThinBandDeg << "); a remesh with below_angle can lift it";
-  }
   return w.str();
 }
 
@@ -281,7 +283,7 @@ json Run::execute(const InciseOp& op) {
             {"ends_on_boundary", r.ends_on_boundary}};
   if (r.remeshed) j["remesh"] = {{"before", mesh_quality_json(r.band_before)}, {"after", mesh_quality_json(r.band_after)}};
   if (r.band_repair_fraction > 0.0) j["remesh"]["repaired_at"] = r.band_repair_fraction;
-  if (r.open_end_corner_deg < 180.0) j["open_end_corner_deg"] = r.open_end_corner_deg;
+  if (r.open_end_corner_deg) j["open_end_corner_deg"] = *r.open_end_corner_deg;
   if (const std::string w = thin_band_warning(r); !w.empty()) j["warning"] = w;
   j["mesh"] = mesh_counts(obj);
   return j;
@@ -300,11 +302,10 @@ json Run::execute(const JoinOp& op) {
     }
   }
   json seams;
-  if (op.remesh) seams = match_object_seams(obj, pairs, op.seam_passes);
-  engine::JoinParams params;
+  if (op.remesh) seams = match_object_seams(obj, pairs, op.seams);
+  engine::JoinParams params = op.join;
   if (op.remesh) params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
-  params.placement = op.placement;
-  if (op.placement == engine::SuturePlacement::OntoB) {
+  if (params.placement == engine::SuturePlacement::OntoB) {
     params.held.assign(obj.mesh.num_vertices(), false);
     for (std::size_t v = 0; v < params.held.size(); ++v)
       for (int dof = 0; dof < 3; ++dof)
@@ -313,7 +314,7 @@ json Run::execute(const JoinOp& op) {
   const engine::JoinResult r = engine::join(obj.mesh, pairs, params);
   engine::apply_edit(obj.mesh, obj.sim, r.mesh, r.maps);
   std::vector<bool> moved_faces;
-  if (op.placement != engine::SuturePlacement::Mean) {
+  if (params.placement != engine::SuturePlacement::Mean) {
     // The placement moved the copies and the vertices around them away from their carried
     // (mean) positions: the state starts where the join put it, and every face it moved
     // starts congruent (y0), so the joined shape is stress-free before the relaxation.
@@ -373,7 +374,7 @@ json Run::execute(const PatchOp& op) {
     params.right_segments = segments(first.lip_right, first.edge_right);
     // The lips' band is graded from the patch's spacing to the host's (a patch is cut no
     // finer than a fifth of its width, a fine host is finer than that).
-    engine::ResampleChainsParams rp = seam_params(obj, first.edge_length, op.params.seam_passes);
+    engine::ResampleChainsParams rp = seam_params(obj, first.edge_length, op.seams);
     rp.grading = 1.5;
     const engine::ResampleChainsResult r = engine::resample_chains(
         obj.mesh,
@@ -393,7 +394,7 @@ json Run::execute(const PatchOp& op) {
     for (auto& v : c.vertices) v = engine::VertexId(v.index() + offset);
     return c;
   };
-  engine::JoinParams join_params;
+  engine::JoinParams join_params = op.join;
   if (plan.matched) join_params.pairing = engine::JoinPairing::InOrder;
   const engine::JoinResult r =
       engine::join(obj.mesh, {{plan.lip_left, shifted(plan.edge_left)},
@@ -454,7 +455,7 @@ json Run::execute(const ResectOp& op) {
     std::vector<std::vector<engine::VertexId>> lines;
     for (const auto& l : cut_loops) lines.push_back(l.vertices);
     engine::RemeshParams p = engine::band_around(obj.mesh, lines, 2.0);
-    p.passes = op.remesh_passes;
+    p.passes = op.seams.band_passes;
     p.constrained_vertices.assign(obj.mesh.num_vertices(), false);
     for (const auto& l : cut_loops) p.constrained_vertices[l.vertices.front().index()] = true;
     engine::EditMaps maps;
@@ -486,9 +487,9 @@ json Run::execute(const ResectOp& op) {
     u.normalize();
     std::vector<engine::SuturePair> pairs = {{start_towards(obj.mesh, cut_loops[0], ca, u),
                                               start_towards(obj.mesh, cut_loops[1], cb, u)}};
-    engine::JoinParams params;
+    engine::JoinParams params = op.join;
     if (op.remesh) {
-      j["seam_remesh"] = match_object_seams(obj, pairs, op.remesh_passes);
+      j["seam_remesh"] = match_object_seams(obj, pairs, op.seams);
       params.pairing = engine::JoinPairing::InOrder;  // matched: one to one
     }
     const engine::JoinResult r = engine::join(obj.mesh, pairs, params);

@@ -26,6 +26,9 @@ static_assert(sizeof(engine::AreaBarrierParams) == 16,
               "AreaBarrierParams changed: pin the new field in area_barrier_defaults");
 static_assert(sizeof(engine::RemeshPasses) == 24,
               "RemeshPasses changed: pin the new field in remesh_passes_defaults");
+static_assert(sizeof(engine::ResampleChainsParams) == 184,
+              "ResampleChainsParams changed: pin the new field in seam_defaults");
+static_assert(sizeof(engine::JoinParams) == 56, "JoinParams changed: pin the new field in join_defaults");
 static_assert(sizeof(engine::IncisionParams) == 160,
               "IncisionParams changed: pin the new field in incision_defaults");
 static_assert(sizeof(engine::PatchPlanParams) == 88,
@@ -35,6 +38,15 @@ static_assert(sizeof(engine::PrepareParams) == 96,
 static_assert(sizeof(engine::ResectionParams) == 16,
               "ResectionParams changed: pin the new field in resection_defaults");
 #endif
+
+// A field that fits in a struct's padding leaves its size as it was. For the structs with room
+// in theirs, a structured binding, which must name every field, stops the build instead.
+[[maybe_unused]] void check_field_counts() {
+  [[maybe_unused]] auto [r1, r2, r3] = engine::RemeshPasses{};
+  [[maybe_unused]] auto [s1, s2, s3, s4, s5, s6, s7, s8, s9] = engine::ResampleChainsParams{};
+  [[maybe_unused]] auto [j1, j2, j3, j4, j5] = engine::JoinParams{};
+  [[maybe_unused]] auto [p1, p2, p3, p4, p5, p6, p7, p8, p9, p10] = engine::PrepareParams{};
+}
 
 void check_version(int version) {
   if (version < 1 || version > kSessionFormatVersion)
@@ -153,6 +165,32 @@ engine::RemeshPasses remesh_passes_defaults(int version) {
   p.iterations = 3;
   p.raise_angles_below_deg = 25.0;
   p.rim_faces_in_region = false;
+  return p;
+}
+
+engine::ResampleChainsParams seam_defaults(int version) {
+  check_version(version);
+  engine::ResampleChainsParams p;
+  p.target_edge_length = 0.0;
+  p.band_width = 2.0;
+  p.grading = 1.0;
+  p.band_passes = remesh_passes_defaults(version);
+  p.constrained_vertices.clear();
+  p.constrained_edges.clear();
+  p.frozen_faces.clear();
+  p.rest_edge_lengths.clear();
+  p.corner_turn_deg = 120.0;
+  return p;
+}
+
+engine::JoinParams join_defaults(int version) {
+  check_version(version);
+  engine::JoinParams p;
+  p.placement = engine::SuturePlacement::Mean;
+  p.pairing = engine::JoinPairing::ArcLength;
+  p.held.clear();
+  p.rigid_iterations = 20;
+  p.rigid_stages = 8;
   return p;
 }
 

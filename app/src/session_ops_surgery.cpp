@@ -81,7 +81,8 @@ JoinOp parse_join(Fields& f) {
   JoinOp op;
   op.object = object_name(f);
   const double max_distance = f.optional_positive("max_distance", 1.0);
-  op.placement = engine::parse_suture_placement(
+  op.join = detail::join_defaults(f.format_version());
+  op.join.placement = engine::parse_suture_placement(
       f.optional_choice("placement", "mean", {"mean", "onto_b"}));
   if (f.has("chains") == f.has("sutures"))
     f.fail("sutures", "give either chains (one suture: two chains) or sutures (a list of "
@@ -101,7 +102,7 @@ JoinOp parse_join(Fields& f) {
     }
   }
   op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
-  op.seam_passes = detail::remesh_passes_defaults(f.format_version());
+  op.seams = detail::seam_defaults(f.format_version());
   return op;
 }
 
@@ -120,6 +121,8 @@ void parse_patch_fields(Fields& f, PatchOp& op) {
   op.start = vec(f.required_vec3("start"));
   op.end = vec(f.required_vec3("end"));
   op.params = detail::patch_plan_defaults(f.format_version());
+  op.seams = detail::seam_defaults(f.format_version());
+  op.join = detail::join_defaults(f.format_version());
   op.params.shape = engine::parse_patch_shape(
       f.optional_choice("shape", "ellipse", {"ellipse", "diamond", "triangle"}));
   op.params.width = f.optional_positive("width", op.params.width);
@@ -174,7 +177,8 @@ ResectOp parse_resect(Fields& f) {
     f.fail("anastomosis", "needs two planes (two loose ends to suture)");
   if (auto a = f.optional_vec3("align")) op.align = vec(*a);
   op.remesh = f.optional_bool("remesh", f.format_version() >= 3);
-  op.remesh_passes = detail::remesh_passes_defaults(f.format_version());
+  op.seams = detail::seam_defaults(f.format_version());
+  op.join = detail::join_defaults(f.format_version());
   return op;
 }
 

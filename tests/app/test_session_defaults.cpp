@@ -145,6 +145,17 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
     EXPECT_EQ(passes.iterations, 3);
     EXPECT_EQ(passes.raise_angles_below_deg, 25.0);
     EXPECT_FALSE(passes.rim_faces_in_region);
+    const engine::ResampleChainsParams seams = seam_defaults(v);
+    EXPECT_EQ(seams.target_edge_length, 0.0);
+    EXPECT_EQ(seams.band_width, 2.0);
+    EXPECT_EQ(seams.grading, 1.0);
+    EXPECT_EQ(seams.corner_turn_deg, 120.0);
+    EXPECT_EQ(seams.band_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    const engine::JoinParams join = join_defaults(v);
+    EXPECT_EQ(join.placement, engine::SuturePlacement::Mean);
+    EXPECT_EQ(join.pairing, engine::JoinPairing::ArcLength);
+    EXPECT_EQ(join.rigid_iterations, 20);
+    EXPECT_EQ(join.rigid_stages, 8);
     const engine::PatchPlanParams p = patch_plan_defaults(v);
     EXPECT_EQ(p.seam_passes.raise_angles_below_deg, passes.raise_angles_below_deg);
     EXPECT_EQ(p.seam_passes.rim_faces_in_region, passes.rim_faces_in_region);
@@ -168,14 +179,25 @@ TEST(SessionDefaults, SurgerySettingsArePinnedPerVersion) {
                                        "{\"loop\": [0, 0, 1]}]}\n"
                                        "{\"op\": \"patch\", \"object\": \"a\", \"start\": [0, 0, 0], \"end\": [1, 0, 0]}\n");
     const engine::RemeshPasses passes = remesh_passes_defaults(v);
-    EXPECT_EQ(std::get<app::ResectOp>(s.actions.at(1).op).remesh_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    // While every version has the engine's values these only show that the parser sets them
+    // from the version; they tell versions apart once a value differs.
+    const auto& resect = std::get<app::ResectOp>(s.actions.at(1).op);
+    EXPECT_EQ(resect.seams.band_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    EXPECT_EQ(resect.seams.corner_turn_deg, seam_defaults(v).corner_turn_deg);
+    EXPECT_EQ(resect.join.rigid_stages, join_defaults(v).rigid_stages);
     const auto& remesh = std::get<app::RemeshOp>(s.actions.at(2).op);
     EXPECT_EQ(remesh.passes.iterations, 5);
     EXPECT_EQ(remesh.passes.raise_angles_below_deg, passes.raise_angles_below_deg);
     EXPECT_EQ(remesh.passes.rim_faces_in_region, passes.rim_faces_in_region);
-    EXPECT_EQ(std::get<app::JoinOp>(s.actions.at(3).op).seam_passes.rim_faces_in_region, passes.rim_faces_in_region);
-    EXPECT_EQ(std::get<app::PatchOp>(s.actions.at(4).op).params.seam_passes.rim_faces_in_region,
-              passes.rim_faces_in_region);
+    const auto& join = std::get<app::JoinOp>(s.actions.at(3).op);
+    EXPECT_EQ(join.seams.band_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    EXPECT_EQ(join.seams.band_width, seam_defaults(v).band_width);
+    EXPECT_EQ(join.join.rigid_iterations, join_defaults(v).rigid_iterations);
+    EXPECT_EQ(join.join.placement, engine::SuturePlacement::Mean);
+    const auto& patch = std::get<app::PatchOp>(s.actions.at(4).op);
+    EXPECT_EQ(patch.params.seam_passes.rim_faces_in_region, passes.rim_faces_in_region);
+    EXPECT_EQ(patch.seams.corner_turn_deg, seam_defaults(v).corner_turn_deg);
+    EXPECT_EQ(patch.join.pairing, join_defaults(v).pairing);
     const auto& incise = std::get<app::InciseOp>(s.actions.at(0).op);
     EXPECT_EQ(incise.params.repair_below_deg, incision_defaults(v).repair_below_deg);
     EXPECT_EQ(incise.params.repair_attempts, incision_defaults(v).repair_attempts);

@@ -100,6 +100,11 @@ const engine::CentrelineTree* GuiState::selected_centreline() {
   return centreline ? &*centreline : nullptr;
 }
 
+void GuiState::show_warning(const nlohmann::json& details) {
+  if (details.is_object() && details.contains("warning") && details["warning"].is_string())
+    error("warning: " + details["warning"].get<std::string>());
+}
+
 bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {
   const ActionOutcome r = controller.run(op);
   if (!r.ok) {
@@ -108,10 +113,7 @@ bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {
   }
   const bool summarised = r.details.is_object() && r.details.contains("summary") && r.details["summary"].is_string();
   info(!done_text.empty() ? done_text : summarised ? r.details["summary"].get<std::string>() : r.op + " done");
-  // A warning (a thin incision band and its cause, an uneven suture, a patch material out of
-  // range) stays on screen until dismissed, as a run's does.
-  if (r.details.is_object() && r.details.contains("warning") && r.details["warning"].is_string())
-    error("warning: " + r.details["warning"].get<std::string>());
+  show_warning(r.details);
   if (!stages.has_mesh() && !controller.workspace().objects().empty()) {
     stages.mesh_loaded();
     fit_requested = true;

@@ -321,8 +321,11 @@ struct GuiState {
 
   void info(std::string text);
   void error(std::string text);
+  /// An op's warning (its report's "warning": a thin incision band and its cause, an uneven
+  /// suture, a material out of range, ...), if any, as an error that stays until dismissed.
+  void show_warning(const nlohmann::json& details);
   /// Records and runs `op` now (SessionController::run); reports the outcome as a message, and
-  /// its warning, if any, as an error that stays until dismissed.
+  /// its warning (show_warning).
   /// True on success. (A snapshot op renders off-screen on the op thread: the window's GL
   /// context stays current on this one; only destroying a controller can take it away.)
   bool perform(const nlohmann::json& op, const std::string& done_text = {});

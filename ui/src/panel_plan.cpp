@@ -480,6 +480,7 @@ void material_controls(GuiState& s) {
     std::snprintf(values, sizeof values, ": E %.4g MPa, nu %.4g, %.4g mm", v.value("youngs_modulus", 0.0),
                   v.value("poisson_ratio", 0.0), v.value("thickness", 0.0));
     s.info("Material of " + target + " of '" + name + "' set" + values);
+    s.show_warning(r.details);
   }
 }
 

@@ -544,7 +544,8 @@ IncisionResult incise(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
   for (const std::size_t i : {std::size_t(0), m}) {
     if (!refined.is_boundary(c[i])) continue;
     for (const VertexId v : {result.left[i], result.right[i]})
-      result.open_end_corner_deg = std::min(result.open_end_corner_deg, vertex_angle_sum_deg(result.mesh, v));
+      result.open_end_corner_deg =
+          std::min(result.open_end_corner_deg.value_or(360.0), vertex_angle_sum_deg(result.mesh, v));
   }
   return result;
 }

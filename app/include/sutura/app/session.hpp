@@ -35,6 +35,7 @@
 #include "sutura/engine/surgery/relaxation.hpp"
 #include "sutura/engine/surgery/remesh.hpp"
 #include "sutura/engine/surgery/resect.hpp"
+#include "sutura/engine/surgery/seam_match.hpp"
 
 namespace sutura::app {
 
@@ -84,17 +85,17 @@ struct GenerateOp {
   bool append = false;
 };
 
-/// Loads an object from a mesh file (path relative to the session file).
 /// A load's `prepare`: the file is a segmentation export, made a vessel to plan on as it is
-/// loaded (engine::prepare_vessel: caps opened as ends, smoothed, remeshed; the same as
-/// `sutura prepare`). Every setting is the session format version's (detail::prepare_defaults),
-/// not the engine's own defaults, but for `edge_length` (mm; none: 16 edges around the
-/// narrowest end) and `smoothing_iterations` (0 to 100), which the op gives; the replay sets
-/// the face limit.
+/// loaded (engine::prepare_vessel: caps opened as ends, smoothed, remeshed; what `sutura
+/// prepare` does with the same settings). Every setting is the session format version's
+/// (detail::prepare_defaults), not the engine's own defaults, but for `edge_length` (mm; none:
+/// 16 edges around the narrowest end) and `smoothing_iterations` (0 to 100), which the op
+/// gives; the replay sets the face limit.
 struct PrepareSpec {
   engine::PrepareParams params;
 };
 
+/// Loads an object from a mesh file (path relative to the session file).
 struct LoadOp {
   std::string object;
   std::filesystem::path file;  ///< resolved against the session file's directory
@@ -335,12 +336,15 @@ struct SutureSpec {
 struct JoinOp {
   std::string object;
   std::vector<SutureSpec> sutures;
-  /// Where the joined shape starts (`placement`: "mean" or "onto_b"); held vertices (any
-  /// fixed translation) are passed on by the replay.
-  engine::SuturePlacement placement = engine::SuturePlacement::Mean;
+  /// The session format version's (detail::join_defaults) with `placement` ("mean" or
+  /// "onto_b", where the joined shape starts) from the op; held vertices (any fixed
+  /// translation) and the pairing are set by the replay.
+  engine::JoinParams join;
   /// Match the seams before joining (engine::match_seams; format 3; before: false).
   bool remesh = true;
-  engine::RemeshPasses seam_passes;  ///< of that match, by the session's format version
+  /// That match: the version's (detail::seam_defaults); the replay adds the object's
+  /// constraints.
+  engine::ResampleChainsParams seams;
 };
 
 /// Cuts a patch for the incision between `start` and `end`, lays it over the incision and
@@ -358,6 +362,10 @@ struct PatchOp {
     Matched,        ///< format 3: lips and patch edges resampled to one count, before the join
   };
   SeamRemesh remesh = SeamRemesh::Matched;
+  /// The lips' resampling (Matched) and the join, by the session's format version
+  /// (detail::seam_defaults, detail::join_defaults).
+  engine::ResampleChainsParams seams;
+  engine::JoinParams join;
 };
 
 /// Removes the region between cut planes (or beyond one) and optionally sutures the two
@@ -374,7 +382,10 @@ struct ResectOp {
   /// Remesh the band around the cut, and match the anastomosis's loops (format 3; before:
   /// false).
   bool remesh = true;
-  engine::RemeshPasses remesh_passes;  ///< of both, by the session's format version
+  /// The loops' match (and seams.band_passes the band's remesh) and the anastomosis's join,
+  /// by the session's format version (detail::seam_defaults, detail::join_defaults).
+  engine::ResampleChainsParams seams;
+  engine::JoinParams join;
 };
 
 /// Remeshes a region of an object (engine::remesh): its sutures, material borders, open

@@ -1,5 +1,6 @@
 #pragma once
 // Incision: a purely topological edit (paper, Sec. 2.1) along a curve sketched on the surface.
+#include <optional>
 #include <vector>
 
 #include "sutura/engine/mesh.hpp"
@@ -61,7 +62,7 @@ struct IncisionParams {
   /// just outside the band that a remesh changes (where it splits or collapses a rim edge) are
   /// the band's: their angles are raised too, and band_after and the repair's decision include
   /// them.
-  RemeshPasses band_passes{3, 25.0, true};
+  RemeshPasses band_passes = with_rim_faces({});
   /// Per vertex of the mesh passed in (empty = none): vertices the remesh must keep where they
   /// are (fixed DOFs, point loads, probes).
   std::vector<bool> constrained_vertices;
@@ -92,10 +93,10 @@ struct IncisionResult {
   /// 0: the first remesh was kept.
   double band_repair_fraction = 0.0;
   /// Degrees: the smallest corner where a lip ends on the open boundary (the sum of the
-  /// angles of the faces at that lip end), 180 when no lip does. A cut drawn onto an open end
+  /// angles of the faces at that lip end); none when no lip does. A cut drawn onto an open end
   /// at a grazing angle makes this small, and no face in that corner can have a larger angle
   /// while the lips stay on the drawn curve.
-  double open_end_corner_deg = 180.0;
+  std::optional<double> open_end_corner_deg;
 };
 
 /// Cuts `mesh` along the curve through `points` (at least 2; each within max_distance of the

@@ -81,6 +81,12 @@ struct RemeshPasses {
   bool rim_faces_in_region = false;
 };
 
+/// `passes` with rim_faces_in_region on.
+constexpr RemeshPasses with_rim_faces(RemeshPasses passes) {
+  passes.rim_faces_in_region = true;
+  return passes;
+}
+
 struct RemeshParams {
   /// mm, > 0: edge length near `grading_curve` (everywhere without one).
   double target_edge_length = 0.0;
