@@ -10,10 +10,10 @@
 using namespace sutura;
 using nlohmann::json;
 
-// An edit's warning stays on screen as an error until dismissed, not only in the plan step's
-// details: here an incision drawn onto a strip's edge at 15 degrees, whose band keeps that
-// corner (the report's warning names it).
-TEST(GuiState, AnEditsWarningIsShownAsAnError) {
+// An edit's warning stays on screen in red, labelled as a warning, until dismissed, not only
+// in the plan step's details: here an incision drawn onto a strip's edge at 15 degrees, whose
+// band keeps that corner (the report's warning names it).
+TEST(GuiState, AnEditsWarningStaysOnScreen) {
   sutura::testing::ControllerFixture f("gui_state_warning");
   ui::GuiState s(*f.controller);
   ASSERT_TRUE(s.perform({{"op", "generate"}, {"object", "s"}, {"shape", "strip"}, {"length", 20.0},
@@ -25,6 +25,6 @@ TEST(GuiState, AnEditsWarningIsShownAsAnError) {
   ASSERT_TRUE(s.perform({{"op", "incise"}, {"object", "s"}, {"points", points}}));
   bool shown = false;
   for (const auto& m : s.messages)
-    shown = shown || (m.error && m.text.find("warning: the cut meets the open end at 15.0 degrees") != std::string::npos);
+    shown = shown || (m.error && m.warning && m.text.find("the cut meets the open end at 15.0 degrees") == 0);
   EXPECT_TRUE(shown);
 }

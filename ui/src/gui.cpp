@@ -129,9 +129,9 @@ void finish_worker(GuiState& s) {
     const std::optional<std::string> still_below = s.keeping_angle ? still_below_warning(s) : std::nullopt;
     s.keeping_angle = false;
     s.info(text);
-    if (still_below) s.error("warning: " + *still_below);
+    if (still_below) s.warn(*still_below);
     // An unstable end state stays on screen until dismissed, like an error.
-    if (d.contains("warning")) s.error("warning: " + d["warning"].get<std::string>());
+    if (d.contains("warning")) s.warn(d["warning"].get<std::string>());
     return;
   }
   s.keep_angle_after_run = false;

@@ -78,7 +78,13 @@ void GuiState::info(std::string text) {
 }
 
 void GuiState::error(std::string text) {
-  messages.push_back({std::move(text), true});
+  messages.push_back({std::move(text), true, false});
+  while (messages.size() > kMessageHistory) messages.pop_front();
+  ++messages_posted;
+}
+
+void GuiState::warn(std::string text) {
+  messages.push_back({std::move(text), true, true});
   while (messages.size() > kMessageHistory) messages.pop_front();
   ++messages_posted;
 }
@@ -102,7 +108,7 @@ const engine::CentrelineTree* GuiState::selected_centreline() {
 
 void GuiState::show_warning(const nlohmann::json& details) {
   if (details.is_object() && details.contains("warning") && details["warning"].is_string())
-    error("warning: " + details["warning"].get<std::string>());
+    warn(details["warning"].get<std::string>());
 }
 
 bool GuiState::perform(const nlohmann::json& op, const std::string& done_text) {

@@ -126,7 +126,8 @@ struct SimulationSettings {
 
 struct Message {
   std::string text;
-  bool error = false;
+  bool error = false;    ///< shown in red: an error, or a warning
+  bool warning = false;  ///< a warning (with `error`): labelled "Warning: " instead of "Error: "
 };
 
 struct GuiState {
@@ -321,8 +322,10 @@ struct GuiState {
 
   void info(std::string text);
   void error(std::string text);
+  /// A warning: in red like an error, labelled as a warning.
+  void warn(std::string text);
   /// An op's warning (its report's "warning": a thin incision band and its cause, an uneven
-  /// suture, a material out of range, ...), if any, as an error that stays until dismissed.
+  /// suture, a material out of range, ...), if any, as a warning (warn), in red until dismissed.
   void show_warning(const nlohmann::json& details);
   /// Records and runs `op` now (SessionController::run); reports the outcome as a message, and
   /// its warning (show_warning).

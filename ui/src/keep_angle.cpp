@@ -71,7 +71,7 @@ bool start_attempt(GuiState& s, const std::string& context, double radius, const
   s.keep_angle_objects = objects;
   s.keep_angle_radius = radius;
   s.keep_angle_widened = radius != first_radius(s);
-  if (!warning_first.empty()) s.error("warning: " + warning_first);
+  if (!warning_first.empty()) s.warn(warning_first);
   s.info(text);
   return true;
 }
@@ -87,12 +87,12 @@ bool undo_steps(GuiState& s) {
 void say_taken_back(GuiState& s, const std::string& what, bool undone) {
   s.stages.simulation_finished();
   if (undone)
-    s.error("warning: " + what +
-            "; the remesh of small angles is taken back: the shape is the one the run left, with its small angles");
+    s.warn(what +
+           "; the remesh of small angles is taken back: the shape is the one the run left, with its small angles");
   else
-    s.error("warning: " + what +
-            "; the remesh of small angles could not be taken back (see the undo's error): the shape shown is "
-            "remeshed but not settled, so it is no equilibrium. Undo it from Plan steps, or simulate again");
+    s.warn(what +
+           "; the remesh of small angles could not be taken back (see the undo's error): the shape shown is "
+           "remeshed but not settled, so it is no equilibrium. Undo it from Plan steps, or simulate again");
 }
 
 }  // namespace

@@ -154,7 +154,7 @@ void message_window(GuiState& s) {
   const bool at_end = ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 1.0f;
   for (const auto& m : s.messages) {
     if (m.error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.85f, 0.1f, 0.1f, 1.0f));
-    ImGui::TextWrapped("%s%s", m.error ? "Error: " : "", m.text.c_str());
+    ImGui::TextWrapped("%s%s", m.warning ? "Warning: " : m.error ? "Error: " : "", m.text.c_str());
     if (m.error) ImGui::PopStyleColor();
   }
   if (s.messages_posted != s.messages_shown && at_end) ImGui::SetScrollHereY(1.0f);
