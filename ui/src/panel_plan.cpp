@@ -293,9 +293,9 @@ void design_controls(GuiState& s, const std::optional<json>& patch) {
 
 void patch_controls(GuiState& s) {
   static const char* kShapes[] = {"ellipse", "diamond", "triangle"};
-  static const char* kShapeUse[] = {"an incision inside the wall (patch aortoplasty)",
-                                    "pointed at both ends", "a gusset: apex at the incision's "
-                                    "end, base across an opened cut edge (widening)"};
+  static const char* kShapeUse[] = {"an incision inside the wall (patch aortoplasty)", "pointed at both ends",
+                                    ("a gusset: apex at the incision's end, base across an opened cut edge "
+                                     "(widening)")};
   ImGui::TextUnformatted("shape:");
   for (int k = 0; k < 3; ++k) {
     ImGui::SameLine();
